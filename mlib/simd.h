@@ -1,0 +1,96 @@
+// mlib/simd.h — the only file of mlib that touches SSE intrinsics.
+//
+// Thin, always-inlined wrappers over __m128 (four floats, lanes x y z w). Everything above
+// this file (expression nodes, vec4) speaks in these names, so a wider instruction set later
+// is a sibling file, not an #ifdef. SSE4.1 is the baseline: `dp` is `dpps`.
+//
+// NaN conventions of the underlying instructions, which callers rely on and document:
+//   min(a, b) / max(a, b) return b in a lane where either operand is NaN (minps / maxps);
+//   every ordered comparison (lt, le, gt, ge, eq) is false in a NaN lane; ne is true.
+#pragma once
+
+#include <smmintrin.h>  // SSE4.1
+
+#include <cstdint>
+
+#if defined(__GNUC__)
+#define MLIB_INLINE inline __attribute__((always_inline))
+#else
+#define MLIB_INLINE inline
+#endif
+
+namespace mlib::simd {
+
+using f4 = __m128;
+
+// --- construction and memory ---------------------------------------------------------
+MLIB_INLINE f4 zero() { return _mm_setzero_ps(); }
+MLIB_INLINE f4 set1(float s) { return _mm_set1_ps(s); }
+MLIB_INLINE f4 setr(float x, float y, float z, float w) { return _mm_setr_ps(x, y, z, w); }
+MLIB_INLINE f4 load(const float* p) { return _mm_loadu_ps(p); }
+MLIB_INLINE void store(float* p, f4 a) { _mm_storeu_ps(p, a); }
+MLIB_INLINE float lane0(f4 a) { return _mm_cvtss_f32(a); }
+
+// --- lane-wise arithmetic ------------------------------------------------------------
+MLIB_INLINE f4 add(f4 a, f4 b) { return _mm_add_ps(a, b); }
+MLIB_INLINE f4 sub(f4 a, f4 b) { return _mm_sub_ps(a, b); }
+MLIB_INLINE f4 mul(f4 a, f4 b) { return _mm_mul_ps(a, b); }
+MLIB_INLINE f4 div(f4 a, f4 b) { return _mm_div_ps(a, b); }
+MLIB_INLINE f4 min(f4 a, f4 b) { return _mm_min_ps(a, b); }
+MLIB_INLINE f4 max(f4 a, f4 b) { return _mm_max_ps(a, b); }
+MLIB_INLINE f4 sqrt(f4 a) { return _mm_sqrt_ps(a); }
+MLIB_INLINE f4 neg(f4 a) { return _mm_xor_ps(a, _mm_set1_ps(-0.0f)); }
+MLIB_INLINE f4 abs(f4 a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a); }
+
+// --- bitwise -------------------------------------------------------------------------
+MLIB_INLINE f4 bit_and(f4 a, f4 b) { return _mm_and_ps(a, b); }
+MLIB_INLINE f4 bit_or(f4 a, f4 b) { return _mm_or_ps(a, b); }
+MLIB_INLINE f4 bit_andnot(f4 a, f4 b) { return _mm_andnot_ps(a, b); }  // ~a & b
+MLIB_INLINE f4 blend(f4 mask, f4 if_false, f4 if_true) {
+  return _mm_blendv_ps(if_false, if_true, mask);
+}
+
+// --- dot products (SSE4.1 dpps) ------------------------------------------------------
+// All four lanes are multiplied and summed. `dp_lane0` is the thesis's form (mask 0xF1,
+// result in lane 0); `dp_bcast` (mask 0xFF) puts the sum in every lane, which saves the
+// shuffle when the result is used as a vector.
+MLIB_INLINE f4 dp_bcast(f4 a, f4 b) { return _mm_dp_ps(a, b, 0xFF); }
+MLIB_INLINE f4 dp_lane0(f4 a, f4 b) { return _mm_dp_ps(a, b, 0xF1); }
+
+// --- shuffles ------------------------------------------------------------------------
+template <int X, int Y, int Z, int W>
+MLIB_INLINE f4 shuffle(f4 a) {
+  return _mm_shuffle_ps(a, a, _MM_SHUFFLE(W, Z, Y, X));
+}
+
+// (a.yzx * b.zxy - a.zxy * b.yzx); lane w is a.w*b.w - a.w*b.w = 0 for finite w.
+MLIB_INLINE f4 cross(f4 a, f4 b) {
+  const f4 a_yzx = shuffle<1, 2, 0, 3>(a);
+  const f4 b_yzx = shuffle<1, 2, 0, 3>(b);
+  const f4 c = _mm_sub_ps(_mm_mul_ps(a, b_yzx), _mm_mul_ps(a_yzx, b));
+  return shuffle<1, 2, 0, 3>(c);
+}
+
+// --- comparisons: lane masks and their reduction -------------------------------------
+MLIB_INLINE f4 cmp_eq(f4 a, f4 b) { return _mm_cmpeq_ps(a, b); }
+MLIB_INLINE f4 cmp_ne(f4 a, f4 b) { return _mm_cmpneq_ps(a, b); }
+MLIB_INLINE f4 cmp_lt(f4 a, f4 b) { return _mm_cmplt_ps(a, b); }
+MLIB_INLINE f4 cmp_le(f4 a, f4 b) { return _mm_cmple_ps(a, b); }
+MLIB_INLINE f4 cmp_gt(f4 a, f4 b) { return _mm_cmpgt_ps(a, b); }
+MLIB_INLINE f4 cmp_ge(f4 a, f4 b) { return _mm_cmpge_ps(a, b); }
+MLIB_INLINE int movemask(f4 m) { return _mm_movemask_ps(m); }
+MLIB_INLINE bool all(f4 m) { return _mm_movemask_ps(m) == 0xF; }
+MLIB_INLINE bool any(f4 m) { return _mm_movemask_ps(m) != 0; }
+
+// --- conversion ----------------------------------------------------------------------
+// Round to nearest (even) under the default MXCSR, then pack the low byte of lanes x y z
+// as 0x00RRGGBB. Callers clamp to [0, 255] first.
+MLIB_INLINE std::uint32_t pack_rgb8(f4 a) {
+  const __m128i i = _mm_cvtps_epi32(a);
+  const auto r = static_cast<std::uint32_t>(_mm_extract_epi32(i, 0));
+  const auto g = static_cast<std::uint32_t>(_mm_extract_epi32(i, 1));
+  const auto b = static_cast<std::uint32_t>(_mm_extract_epi32(i, 2));
+  return (r << 16) | (g << 8) | b;
+}
+
+}  // namespace mlib::simd
