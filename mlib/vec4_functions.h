@@ -75,6 +75,30 @@ MLIB_INLINE std::uint32_t to_color(const A& a) {
   return simd::pack_rgb8(simd::mul(c, simd::set1(255.0f)));
 }
 
+// Four dot products in one go: (a0·b0, a1·b1, a2·b2, a3·b3), each over all four lanes.
+// Cheaper than four dpps where dpps is slow; the rounding may differ from dot() in the
+// last bit (different summation order).
+template <Expr A0, Expr B0, Expr A1, Expr B1, Expr A2, Expr B2, Expr A3, Expr B3>
+MLIB_INLINE vec4 dot4(const A0& a0, const B0& b0, const A1& a1, const B1& b1, const A2& a2,
+                      const B2& b2, const A3& a3, const B3& b3) {
+  return vec4(simd::dot4(a0.eval(), b0.eval(), a1.eval(), b1.eval(), a2.eval(), b2.eval(),
+                         a3.eval(), b3.eval()));
+}
+
+// Minimum / maximum of lanes x, y, z.
+template <Expr A>
+MLIB_INLINE float hmin3(const A& a) {
+  return simd::hmin3(a.eval());
+}
+template <Expr A>
+MLIB_INLINE float hmax3(const A& a) {
+  return simd::hmax3(a.eval());
+}
+
+// Loads p[0], p[1], p[2] with w = 0; p[3] is read but its bits are discarded (a struct may
+// keep an integer there).
+MLIB_INLINE vec4 load_xyz(const float* p) { return vec4(simd::load_xyz0(p)); }
+
 // "(x, y, z, w)" with enough digits to read the floats back exactly.
 std::string str(const vec4& v);
 template <Expr A>
