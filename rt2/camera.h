@@ -1,0 +1,45 @@
+// rt2/camera.h — the pinhole camera of thesis 3.3.
+//
+// Pixel (px, py) with 0 <= px < width, 0 <= py < height, continuous (a sample position
+// inside the pixel; the pixel centre is px + 0.5):
+//   x = 2 px / width - 1,  y = 1 - 2 py / height,
+//   x *= aspect * tan(fov / 2),  y *= tan(fov / 2),
+//   dir = normalize(Cd + Cr x + Cu y).
+// `fov` is the FULL vertical angle of view (the thesis's `angle` is taken as the half
+// angle, tan(angle) above); aspect = width / height. The thesis's Cl ("left") is named
+// `right` here: image x grows to the right, so the vector it multiplies must point right
+// (the thesis's world was left-handed). rt2 is right-handed: right = forward x up.
+#pragma once
+
+#include "rt2/ray.h"
+
+namespace rt2 {
+
+class Camera {
+ public:
+  Camera() : Camera(vec4(0, 0, 0), vec4(0, 0, -1), vec4(0, 1, 0), 60.0f) {}
+  // From the thesis's vectors: position Cp, direction Cd, up Cu (made orthogonal to Cd).
+  Camera(const vec4& position, const vec4& direction, const vec4& up, float fov_degrees);
+  static Camera look_at(const vec4& position, const vec4& target, const vec4& up,
+                        float fov_degrees);
+
+  // The primary ray through continuous pixel coordinates (px, py) of a width x height image.
+  Ray ray(float px, float py, int width, int height) const {
+    const float x = (2.0f * px / float(width) - 1.0f) * (float(width) / float(height)) * tan_half_;
+    const float y = (1.0f - 2.0f * py / float(height)) * tan_half_;
+    return Ray(position_, normalize(forward_ + right_ * x + up_ * y));
+  }
+
+  const vec4& position() const { return position_; }
+  const vec4& forward() const { return forward_; }
+  const vec4& up() const { return up_; }
+  const vec4& right() const { return right_; }
+  float fov() const { return fov_; }
+
+ private:
+  vec4 position_, forward_, up_, right_;
+  float fov_ = 60.0f;
+  float tan_half_ = 0.577f;
+};
+
+}  // namespace rt2

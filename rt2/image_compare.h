@@ -1,0 +1,29 @@
+// rt2/image_compare.h — how far an image is from a reference.
+//
+// RMSE over the RGB channels comes from OpenImageIO's ImageBufAlgo::compare (through
+// image_io.cpp), and PSNR = 20 log10(1 / RMSE) with peak 1.0 (OIIO's own PSNR would take
+// the images' maximum as the peak, which changes with highlights); SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5,
+// K1 = 0.01, K2 = 0.03, dynamic range 1) is computed here on luminance, with both images
+// clamped to [0, 1] first, and averaged over the image. Identical images give RMSE 0,
+// PSNR +inf and SSIM 1.
+#pragma once
+
+#include "rt2/image.h"
+
+namespace rt2 {
+
+struct ImageError {
+  double rmse = 0.0;
+  double psnr = 0.0;  // dB, peak value 1; +inf for identical images
+  double ssim = 1.0;
+};
+
+// Throws rt2::Error when the sizes differ.
+ImageError compare_images(const Image& image, const Image& reference);
+
+double ssim(const Image& a, const Image& b);
+
+// RMSE via OIIO, and PSNR from it (defined in image_io.cpp, the one file with OIIO).
+void rmse_psnr(const Image& a, const Image& b, double& rmse, double& psnr);
+
+}  // namespace rt2

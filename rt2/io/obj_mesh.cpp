@@ -1,0 +1,341 @@
+// rt2/io/obj_mesh.cpp — OBJ text and its MTL libraries into a Mesh (internal; see
+// rt2/io/obj_mesh.h).
+//
+// tinyobjloader parses, but it accepts bad input silently (an unparsable coordinate
+// becomes 0, an out-of-range index is a warning or a skipped face), so the OBJ text is
+// scanned first to find such problems with their line numbers. MTL libraries are found and
+// read here too (relative to the OBJ), which gives the "missing library" warning and the
+// line numbers of MTL values that tinyobjloader does not report (rt2/io/mtl.h). Then the
+// faces are assembled into a Mesh with one scene material each.
+#include "rt2/io/obj_mesh.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string_view>
+#include <system_error>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "rt2/error.h"
+#include "rt2/io/mtl.h"
+#include "rt2/io/text.h"
+
+namespace rt2::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- OBJ scanning -----------------------------------------------------------------------
+
+bool parse_index(std::string_view token, long long& v) {
+  if (token.starts_with('+')) token.remove_prefix(1);  // atoi, as tinyobjloader, accepts it
+  const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
+  return !token.empty() && r.ec == std::errc() && r.ptr == token.data() + token.size();
+}
+
+// What an OBJ file says, as far as the checks need it.
+struct ObjScan {
+  std::size_t faces = 0;
+  std::vector<std::string> libraries;                       // mtllib names, in order
+  std::vector<std::pair<std::string, std::size_t>> usemtl;  // name, line
+};
+
+struct IndexKind {
+  const char* one;
+  const char* many;
+};
+constexpr IndexKind kVertexKind{"vertex", "vertices"};
+constexpr IndexKind kTexcoordKind{"texture coordinate", "texture coordinates"};
+constexpr IndexKind kNormalKind{"normal", "normals"};
+
+// An OBJ index: 1..total, or relative -1..-defined (defined: how many come before the face).
+void check_index(const std::string& file, std::size_t line, long long idx, std::size_t defined,
+                 std::size_t total, const IndexKind& kind) {
+  const std::string k = kind.one;
+  if (idx == 0) error_at(file, line, 0, "face references " + k + " 0, but OBJ indices start at 1");
+  if (idx > 0 && static_cast<unsigned long long>(idx) > total) {
+    error_at(file, line, 0,
+             "face references " + k + " " + std::to_string(idx) + ", but only " +
+                 std::to_string(total) + " " + (total == 1 ? k : kind.many) + " " +
+                 (total == 1 ? "is" : "are") + " defined");
+  }
+  if (idx < 0 && (idx == LLONG_MIN || static_cast<unsigned long long>(-idx) > defined)) {
+    error_at(file, line, 0,
+             "face references " + k + " " + std::to_string(idx) + " (relative), but only " +
+                 std::to_string(defined) + " " + (defined == 1 ? k : kind.many) +
+                 " are defined before it");
+  }
+}
+
+// "v x y z": three finite coordinates that fit a float.
+void check_vertex(const std::string& file, std::size_t line,
+                  const std::vector<std::string_view>& t) {
+  if (t.size() < 4)
+    error_at(file, line, 0, "vertex needs 3 coordinates, got " + std::to_string(t.size() - 1));
+  for (std::size_t i = 1; i <= 3; ++i) {
+    double v = 0.0;
+    if (!parse_double(t[i], v))
+      error_at(file, line, 0, "vertex coordinate '" + std::string(t[i]) + "' is not a number");
+    if (!std::isfinite(v) || std::fabs(v) > FLT_MAX)
+      error_at(file, line, 0, "vertex is not finite (coordinate '" + std::string(t[i]) + "')");
+  }
+}
+
+// "f a b c ...", each corner v, v/vt, v//vn or v/vt/vn.
+void check_face(const std::string& file, std::size_t line, const std::vector<std::string_view>& t,
+                const std::size_t defined[3], const std::size_t total[3]) {
+  if (t.size() < 4)
+    error_at(file, line, 0,
+             "face has " + std::to_string(t.size() - 1) + " vertices; at least 3 are needed");
+  const IndexKind* kinds[3] = {&kVertexKind, &kTexcoordKind, &kNormalKind};
+  for (std::size_t c = 1; c < t.size(); ++c) {
+    std::string_view rest = t[c];
+    for (std::size_t part = 0; part < 3 && !rest.empty(); ++part) {
+      const std::size_t slash = std::min(rest.find('/'), rest.size());
+      const std::string_view number = rest.substr(0, slash);
+      rest = slash < rest.size() ? rest.substr(slash + 1) : std::string_view();
+      if (number.empty() && part > 0) continue;  // v//vn, or a trailing slash
+      long long idx = 0;
+      if (!parse_index(number, idx))
+        error_at(file, line, 0, "face corner '" + std::string(t[c]) + "' is not an index");
+      check_index(file, line, idx, defined[part], total[part], *kinds[part]);
+    }
+    if (!rest.empty())
+      error_at(file, line, 0, "face corner '" + std::string(t[c]) + "' has more than 3 parts");
+  }
+}
+
+// Two passes: the totals of v, vt and vn first (a face may name a vertex defined after it,
+// as tinyobjloader allows), then every line.
+ObjScan scan_obj(const std::string& file, std::string_view text) {
+  std::size_t total[3] = {0, 0, 0};
+  for_each_line(text, [&](std::size_t, std::string_view s) {
+    const std::string_view head = s.substr(0, std::min(s.find_first_of(" \t"), s.size()));
+    total[0] += head == "v";
+    total[1] += head == "vt";
+    total[2] += head == "vn";
+  });
+  ObjScan scan;
+  std::size_t defined[3] = {0, 0, 0};
+  for_each_line(text, [&](std::size_t line, std::string_view s) {
+    if (s.empty() || s[0] == '#') return;
+    const std::vector<std::string_view> t = split_blanks(s);
+    if (t[0] == "v") {
+      check_vertex(file, line, t);
+      ++defined[0];
+    } else if (t[0] == "vt") {
+      ++defined[1];
+    } else if (t[0] == "vn") {
+      ++defined[2];
+    } else if (t[0] == "f") {
+      check_face(file, line, t, defined, total);
+      ++scan.faces;
+    } else if (t[0] == "mtllib") {
+      for (std::size_t i = 1; i < t.size(); ++i) scan.libraries.emplace_back(t[i]);
+    } else if (t[0] == "usemtl") {
+      scan.usemtl.emplace_back(t.size() > 1 ? std::string(t[1]) : std::string(), line);
+    }
+  });
+  return scan;
+}
+
+// ---- MTL libraries and face materials ---------------------------------------------------
+
+// The scene material of each face of one OBJ: `override_material` if >= 0, else its MTL
+// material, else "default". Added on first use, so that MTL entries no face uses and an
+// unneeded default do not clutter the scene.
+class FaceMaterials {
+ public:
+  FaceMaterials(Scene& scene, const std::string& obj_path,
+                const std::vector<tinyobj::material_t>& mtl,
+                const std::map<std::string, MtlFacts>& facts, int override_material)
+      : scene_(scene),
+        obj_path_(obj_path),
+        mtl_(mtl),
+        facts_(facts),
+        ids_(mtl.size(), -1),
+        override_(override_material) {}
+
+  std::uint32_t operator()(int mtl_id) {
+    if (override_ >= 0) return static_cast<std::uint32_t>(override_);
+    if (mtl_id < 0 || static_cast<std::size_t>(mtl_id) >= mtl_.size()) return fallback();
+    int& id = ids_[static_cast<std::size_t>(mtl_id)];
+    if (id < 0) {
+      const tinyobj::material_t& t = mtl_[static_cast<std::size_t>(mtl_id)];
+      const auto it = facts_.find(t.name);
+      const Material m = from_mtl(t, it != facts_.end() ? it->second : MtlFacts{obj_path_});
+      id = static_cast<int>(
+          scene_.add_material(fs::path(obj_path_).filename().string() + ":" + t.name, m));
+    }
+    return static_cast<std::uint32_t>(id);
+  }
+
+ private:
+  std::uint32_t fallback() {
+    if (default_ < 0) {
+      const int m = scene_.find_material("default");
+      default_ = m >= 0 ? m : static_cast<int>(scene_.add_material("default", Material{}));
+    }
+    return static_cast<std::uint32_t>(default_);
+  }
+
+  Scene& scene_;
+  const std::string& obj_path_;
+  const std::vector<tinyobj::material_t>& mtl_;
+  const std::map<std::string, MtlFacts>& facts_;
+  std::vector<int> ids_;  // the scene material of each MTL material, -1 until used
+  int override_;
+  int default_ = -1;
+};
+
+// The text of the MTL libraries that exist (read in the order named), warning about the
+// others; facts are collected on the way.
+std::string read_libraries(const std::string& obj_path, const ObjScan& scan, bool quiet,
+                           std::map<std::string, MtlFacts>& facts, bool& missing) {
+  const fs::path folder = fs::path(obj_path).parent_path();
+  std::set<std::string> seen;
+  std::string text;
+  missing = false;
+  for (const std::string& name : scan.libraries) {
+    if (!seen.insert(name).second) continue;
+    const std::string path = (folder / name).string();
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+      missing = true;
+      if (!quiet)
+        warn(obj_path + ": material library '" + name + "' not found; using the default material");
+      continue;
+    }
+    std::string mtl = read_file(path, kMaxObjBytes, "");
+    scan_mtl(path, mtl, facts);
+    text += mtl;
+    text += '\n';
+  }
+  return text;
+}
+
+// ---- OBJ to Mesh ------------------------------------------------------------------------
+
+// Smooth shading needs a usable normal at every corner; otherwise the mesh is flat.
+bool usable_normals(const tinyobj::attrib_t& a, const std::vector<tinyobj::shape_t>& shapes) {
+  const std::size_t n = a.normals.size() / 3;
+  if (n == 0) return false;
+  for (const auto& shape : shapes) {
+    for (const tinyobj::index_t& ix : shape.mesh.indices) {
+      if (ix.normal_index < 0 || static_cast<std::size_t>(ix.normal_index) >= n) return false;
+      const float* v = &a.normals[3 * static_cast<std::size_t>(ix.normal_index)];
+      const float len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (!(len2 > 0.0f) || !std::isfinite(len2)) return false;
+    }
+  }
+  return true;
+}
+
+// Positions (and normals) per distinct corner, faces, and a scene material per face.
+Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMaterials& materials) {
+  const tinyobj::attrib_t& a = reader.GetAttrib();
+  const std::size_t nv = a.vertices.size() / 3;
+  const bool smooth = usable_normals(a, reader.GetShapes());
+  Mesh mesh;
+  mesh.name = path;
+  std::unordered_map<std::uint64_t, std::uint32_t> corners;
+  auto corner = [&](const tinyobj::index_t& ix) {
+    if (ix.vertex_index < 0 || static_cast<std::size_t>(ix.vertex_index) >= nv)
+      throw Error(path + ": tinyobjloader returned a vertex index out of range");
+    const auto v = static_cast<std::size_t>(ix.vertex_index);
+    const int n = smooth ? ix.normal_index : -1;
+    const std::uint64_t key = (std::uint64_t(v) << 32) | std::uint32_t(n + 1);
+    const auto [it, added] =
+        corners.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
+    if (added) {
+      mesh.positions.push_back(
+          vec4(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]));
+      if (smooth) {
+        const float* p = &a.normals[3 * static_cast<std::size_t>(n)];
+        mesh.normals.push_back(normalize(vec4(p[0], p[1], p[2])));
+      }
+    }
+    return it->second;
+  };
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const tinyobj::mesh_t& m = shape.mesh;
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+      const std::size_t count = m.num_face_vertices[f];
+      if (count == 3 && offset + 3 <= m.indices.size()) {
+        mesh.faces.push_back({corner(m.indices[offset]), corner(m.indices[offset + 1]),
+                              corner(m.indices[offset + 2])});
+        mesh.face_materials.push_back(
+            materials(f < m.material_ids.size() ? m.material_ids[f] : -1));
+      }
+      offset += count;
+    }
+  }
+  return mesh;
+}
+
+// Materials for faces that name an MTL material the libraries do not have.
+void warn_unknown_usemtl(const std::string& path, const ObjScan& scan,
+                         const std::vector<tinyobj::material_t>& mtl) {
+  std::set<std::string> known, warned;
+  for (const auto& m : mtl) known.insert(m.name);
+  for (const auto& [name, line] : scan.usemtl) {
+    if (known.count(name) || !warned.insert(name).second) continue;
+    warn(location(path, line, 0) + ": material '" + name +
+         "' is not in the material libraries; using the default material");
+  }
+}
+
+}  // namespace
+
+Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
+                 int override_material) {
+  if (override_material >= 0 &&
+      static_cast<std::size_t>(override_material) >= scene.materials.size())
+    throw Error(path + ": override material " + std::to_string(override_material) +
+                " does not exist");
+  const ObjScan scan = scan_obj(path, text);
+  if (scan.faces == 0) error_at(path, 0, 0, "no faces (an OBJ mesh needs at least one 'f' line)");
+
+  const bool overridden = override_material >= 0;
+  std::map<std::string, MtlFacts> facts;
+  bool missing = false;
+  const std::string mtl_text = read_libraries(path, scan, overridden, facts, missing);
+
+  // The text already read is parsed, not the file again; tinyobjloader then reads the MTL
+  // text (all libraries) at the first mtllib line, as it would the first library file.
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(text, mtl_text, config))
+    error_at(path, 0, 0,
+             "tinyobjloader: " + (reader.Error().empty() ? "cannot parse" : reader.Error()));
+  // tinyobjloader's warnings are dropped: what they report is checked above, or here.
+  if (!overridden && !missing) warn_unknown_usemtl(path, scan, reader.GetMaterials());
+  for (const float v : reader.GetAttrib().vertices)
+    if (!std::isfinite(v)) error_at(path, 0, 0, "vertex is not finite");
+
+  FaceMaterials materials(scene, path, reader.GetMaterials(), facts, override_material);
+  Mesh mesh = assemble(path, reader, materials);
+  const std::size_t faces = mesh.faces.size();
+  scene.degenerate_triangles += mesh.drop_degenerate();
+  if (mesh.faces.empty()) {
+    error_at(path, 0, 0,
+             faces == 0 ? "no faces"
+                        : "all " + std::to_string(faces) + " faces are degenerate (zero area)");
+  }
+  return mesh;
+}
+
+}  // namespace rt2::io

@@ -1,0 +1,28 @@
+// rt2/io/obj_mesh.h — an OBJ file (and its MTL libraries) into a Mesh (internal).
+//
+// Part of the implementation of rt2/scene_io.h, not an API: used by rt2::load_obj and
+// rt2::frame_obj (rt2/scene_io.cpp) and by the [[meshes]] of a TOML scene
+// (rt2/io/toml_scene.cpp). The caller reads the OBJ text (read_file, at most kMaxObjBytes),
+// so that a missing file is reported in the caller's terms.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "rt2/mesh.h"
+#include "rt2/scene.h"
+
+namespace rt2::io {
+
+// Limits beyond which input is a mistake, not a scene.
+constexpr std::size_t kMaxObjBytes = 4096ull << 20;  // an OBJ or MTL file
+
+// The Mesh of the OBJ `text`, read from `path`: the text is checked first (every problem
+// named with its line), its MTL libraries are read relative to `path` (a missing one is a
+// warning), and tinyobjloader parses both. Face materials and degenerate faces are as
+// rt2::load_obj documents (rt2/scene_io.h), but on an error `scene` may keep materials
+// already added: restoring it is the caller's job. Throws rt2::Error.
+Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
+                 int override_material);
+
+}  // namespace rt2::io

@@ -1,0 +1,154 @@
+// rt2/io/text.cpp — the message and file helpers shared by the scene loaders (internal; see
+// rt2/io/text.h): one-line messages with file:line:col locations, "did you mean" hints, whole
+// files read with a size limit, and the line and token splitting of OBJ and MTL text.
+#include "rt2/io/text.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <system_error>
+
+#include "rt2/error.h"
+#include "rt2/scene.h"
+
+namespace rt2::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+}  // namespace
+
+// ---- messages ---------------------------------------------------------------------------
+
+std::string one_line(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c > ' ' && c != 0x7f)
+      out += ch;
+    else if (!out.empty() && out.back() != ' ')
+      out += ' ';
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+std::string fmt(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string location(const std::string& file, std::size_t line, std::size_t column) {
+  std::string s = file;
+  if (line > 0) s += ":" + std::to_string(line);
+  if (line > 0 && column > 0) s += ":" + std::to_string(column);
+  return s;
+}
+
+[[noreturn]] void error_at(const std::string& file, std::size_t line, std::size_t column,
+                           const std::string& msg) {
+  throw Error(one_line(location(file, line, column) + ": " + msg));
+}
+
+void warn(const std::string& msg) { std::cerr << "warning: " << one_line(msg) << '\n'; }
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::size_t common_prefix(std::string_view a, std::string_view b) {
+  std::size_t n = 0;
+  while (n < a.size() && n < b.size() && a[n] == b[n]) ++n;
+  return n;
+}
+
+void validate(const std::string& file, const Scene& scene) {
+  try {
+    scene.validate();
+  } catch (const Error& e) {
+    throw Error(one_line(file + ": " + e.what()));
+  }
+}
+
+// ---- files ------------------------------------------------------------------------------
+
+std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context) {
+  auto fail_read = [&](const std::string& why) {
+    throw Error(
+        one_line(context.empty() ? path + ": " + why : context + " '" + path + "': " + why));
+  };
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (st.type() == fs::file_type::not_found) fail_read("file not found");
+  if (st.type() == fs::file_type::none) fail_read("cannot access: " + ec.message());
+  if (st.type() == fs::file_type::directory) fail_read("is a directory, not a file");
+  // Devices and pipes (/dev/zero) are refused: they need not end.
+  if (st.type() != fs::file_type::regular) fail_read("is not a regular file");
+
+  errno = 0;
+  const std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) fail_read(std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  char buf[1 << 16];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) {
+    if (text.size() + n > max_bytes)
+      fail_read("is larger than " + std::to_string(max_bytes >> 20) + " MiB");
+    text.append(buf, n);
+  }
+  if (std::ferror(f.get())) fail_read(std::string("cannot read: ") + std::strerror(errno));
+  return text;
+}
+
+std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t pos) {
+  const std::string_view before = text.substr(0, pos);
+  const std::size_t line =
+      1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+  const std::size_t nl = before.rfind('\n');
+  return {line, nl == std::string_view::npos ? pos + 1 : pos - nl};
+}
+
+// ---- lines and tokens -------------------------------------------------------------------
+
+std::vector<std::string_view> split_blanks(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while ((i = s.find_first_not_of(" \t", i)) != std::string_view::npos) {
+    const std::size_t end = std::min(s.find_first_of(" \t", i), s.size());
+    out.push_back(s.substr(i, end - i));
+    i = end;
+  }
+  return out;
+}
+
+bool parse_double(std::string_view token, double& v) {
+  const std::string s(token);  // strtod needs the terminator; it also reads nan and inf
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return !s.empty() && end == s.c_str() + s.size();
+}
+
+}  // namespace rt2::io

@@ -1,0 +1,105 @@
+// rt2/io/text.h — the message and file helpers shared by the scene loaders (internal).
+//
+// Part of the implementation of rt2/scene_io.h, used only by rt2/scene_io.cpp and rt2/io/;
+// not an API. Every message the loaders produce is built here: one line, starting with
+// "file", "file:line" or "file:line:column", numbers in shortest round-trip form, with a
+// "did you mean" hint for a misspelt key or name. Files are read whole, with a size limit
+// and a message for each way a path can fail; OBJ and MTL text is walked line by line and
+// split into blank-separated tokens as tinyobjloader does.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace rt2 {
+struct Scene;
+}
+
+namespace rt2::io {
+
+// ---- messages ---------------------------------------------------------------------------
+
+// `s` with control characters (newlines in toml++ and tinyobjloader messages, or in a quoted
+// TOML key) turned into spaces and runs of spaces collapsed, so what() is one line.
+std::string one_line(std::string_view s);
+
+// Shortest round-trip form: -1, 0.25, 1e+16, nan, inf.
+std::string fmt(double v);
+
+// "file", "file:line" or "file:line:column" (a line or column of 0 is unknown).
+std::string location(const std::string& file, std::size_t line, std::size_t column);
+
+// Throws rt2::Error "location: msg" (see location), made one line.
+[[noreturn]] void error_at(const std::string& file, std::size_t line, std::size_t column,
+                           const std::string& msg);
+
+// Prints "warning: msg" to stderr, made one line.
+void warn(const std::string& msg);
+
+// Levenshtein distance, for "did you mean" hints (keys and names are short).
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// The number of leading characters `a` and `b` share.
+std::size_t common_prefix(std::string_view a, std::string_view b);
+
+// " (did you mean 'radius'?)" for the closest candidate that is within two edits or shares
+// the first four letters (rotation: rotate), else "".
+template <class Names>
+std::string suggestion(std::string_view wrong, const Names& candidates) {
+  if (wrong.size() > 64) return "";  // not a typo; and the distance is quadratic
+  std::string_view best;
+  std::size_t best_d = std::string_view::npos;
+  for (const auto& c : candidates) {
+    const std::string_view name(c);
+    const std::size_t d = edit_distance(wrong, name);
+    const bool close = (d <= 2 && d < name.size()) || common_prefix(wrong, name) >= 4;
+    if (close && d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best.empty() ? "" : " (did you mean '" + std::string(best) + "'?)";
+}
+
+// Scene::validate(), its message prefixed with `file` ("file: ...") and made one line.
+void validate(const std::string& file, const Scene& scene);
+
+// ---- files ------------------------------------------------------------------------------
+
+// The whole of the regular file `path`. `context` is empty when the user named `path`
+// directly (the message starts with it), or "scene.toml:7:8: meshes[0].file" when another
+// file names it (the message starts with that, and quotes the path).
+std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context);
+
+// 1-based line and column of byte `pos` in `text` (the column counts bytes).
+std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t pos);
+
+// ---- lines and tokens -------------------------------------------------------------------
+
+// Calls fn(line_number, line) for each line of `text`, split at \n, \r\n or a lone \r as
+// tinyobjloader splits it, with blanks trimmed at both ends.
+template <class Fn>
+void for_each_line(std::string_view text, Fn&& fn) {
+  std::size_t line = 0, i = 0;
+  while (i < text.size()) {
+    std::size_t end = text.find_first_of("\r\n", i);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view s = text.substr(i, end - i);
+    const std::size_t first = s.find_first_not_of(" \t");
+    s = first == std::string_view::npos ? std::string_view()
+                                        : s.substr(first, s.find_last_not_of(" \t") - first + 1);
+    fn(++line, s);
+    i = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
+  }
+}
+
+// The blank-separated (spaces, tabs) tokens of `s`.
+std::vector<std::string_view> split_blanks(std::string_view s);
+
+// The whole token as a number, or false.
+bool parse_double(std::string_view token, double& v);
+
+}  // namespace rt2::io

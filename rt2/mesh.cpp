@@ -1,0 +1,90 @@
+// rt2/mesh.cpp — mesh bounds, concatenation, clean-up and transforms.
+#include "rt2/mesh.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace rt2 {
+
+Aabb Mesh::bounds() const {
+  Aabb b;
+  for (const auto& f : faces)
+    for (std::uint32_t i : f) b.grow(positions[i]);
+  return b;
+}
+
+void Mesh::append(const Mesh& other) {
+  const auto base = static_cast<std::uint32_t>(positions.size());
+  // Per-vertex normals survive only if both parts have them; otherwise the result is flat.
+  const bool smooth = (positions.empty() || !normals.empty()) &&
+                      (other.positions.empty() || !other.normals.empty());
+  positions.insert(positions.end(), other.positions.begin(), other.positions.end());
+  if (smooth)
+    normals.insert(normals.end(), other.normals.begin(), other.normals.end());
+  else
+    normals.clear();
+  for (const auto& f : other.faces) faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  face_materials.insert(face_materials.end(), other.face_materials.begin(),
+                        other.face_materials.end());
+}
+
+std::size_t Mesh::drop_degenerate() {
+  std::size_t kept = 0;
+  const std::size_t n = positions.size();
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const auto& f = faces[i];
+    bool ok = f[0] < n && f[1] < n && f[2] < n;
+    if (ok) {
+      const vec4 c = cross(positions[f[1]] - positions[f[0]], positions[f[2]] - positions[f[0]]);
+      const float a2 = dot(c, c);
+      ok = a2 > 0.0f && std::isfinite(a2);
+    }
+    if (ok) {
+      faces[kept] = f;
+      face_materials[kept] = face_materials[i];
+      ++kept;
+    }
+  }
+  const std::size_t dropped = faces.size() - kept;
+  faces.resize(kept);
+  face_materials.resize(kept);
+  return dropped;
+}
+
+namespace {
+
+// Row-major 3x3 rotation R = Rz * Ry * Rx (x first), angles in degrees.
+struct Mat3 {
+  float m[3][3];
+  vec4 apply(const vec4& v) const {
+    return vec4(m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+                m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+                m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]);
+  }
+};
+
+Mat3 rotation(const vec4& deg) {
+  const float k = std::numbers::pi_v<float> / 180.0f;
+  const float cx = std::cos(deg[0] * k), sx = std::sin(deg[0] * k);
+  const float cy = std::cos(deg[1] * k), sy = std::sin(deg[1] * k);
+  const float cz = std::cos(deg[2] * k), sz = std::sin(deg[2] * k);
+  // Rz * Ry * Rx
+  return {{{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
+           {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
+           {-sy, cy * sx, cy * cx}}};
+}
+
+}  // namespace
+
+void apply_transform(Mesh& mesh, const Transform& xf) {
+  const Mat3 r = rotation(xf.rotate_degrees);
+  for (vec4& p : mesh.positions) p = r.apply(p * xf.scale) + xf.translate;
+  // Normals: inverse transpose of R*S is R*S^-1 (R orthonormal).
+  const vec4 inv_scale(1.0f / xf.scale[0], 1.0f / xf.scale[1], 1.0f / xf.scale[2]);
+  for (vec4& n : mesh.normals) n = normalize(r.apply(n * inv_scale));
+  // A reflection (odd number of negative scales) flips the winding; keep faces consistent.
+  if (xf.scale[0] * xf.scale[1] * xf.scale[2] < 0.0f)
+    for (auto& f : mesh.faces) std::swap(f[1], f[2]);
+}
+
+}  // namespace rt2

@@ -1,0 +1,34 @@
+// rt2/offset.h — where a secondary ray starts, so that it does not hit its own surface.
+//
+// Wächter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray
+// Tracing Gems, ch. 6): the hit point is moved off the surface along the geometric normal
+// by a fixed number of float ulps of each coordinate (so the offset scales with the
+// magnitude of the point, from millimetre scenes to points 1e6 away), and by a small
+// absolute amount near the origin where ulps vanish. The new ray then starts at t = 0.
+// The hit point itself must be computed precisely (barycentric interpolation for
+// triangles, re-projection for spheres and planes) for the offset to be sufficient.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include "rt2/ray.h"
+
+namespace rt2 {
+
+inline vec4 offset_ray_origin(const vec4& p, const vec4& n) {
+  constexpr float kOrigin = 1.0f / 32.0f;
+  constexpr float kFloatScale = 1.0f / 65536.0f;
+  constexpr float kIntScale = 256.0f;
+  vec4 out;
+  for (int i = 0; i < 3; ++i) {
+    const auto of = static_cast<std::int32_t>(kIntScale * n[i]);
+    const auto bits = std::bit_cast<std::int32_t>(p[i]);
+    const float moved = std::bit_cast<float>(bits + (p[i] < 0.0f ? -of : of));
+    out[i] = std::fabs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
+  }
+  return out;
+}
+
+}  // namespace rt2

@@ -1,0 +1,84 @@
+// rt2/render.h — rendering rows of a frame with the kernel specialised for the scene.
+//
+// The Renderer is built once per frame setting: it validates the settings, notes the
+// scene's features, precomputes the subpixel offsets and picks the kernel — a function
+// template over the feature bits (rt2/tracer.h), instantiated for all 64 combinations —
+// so the per-ray code contains exactly what the scene needs and no feature tests on
+// data it does not have. `render_rows` is the whole per-pixel loop; it knows no
+// scheduler (rt2/schedule.h splits a frame and calls it from any thread).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rt2/accel.h"
+#include "rt2/image.h"
+#include "rt2/scene.h"
+#include "rt2/supersampling.h"
+
+namespace rt2 {
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  int subpixels = 1;              // samples per pixel, >= 1
+  Pattern pattern = Pattern::grid;
+  int depth = 1;                  // recursion depth: 0 = no reflection/refraction rays
+  float min_weight = 0.01f;       // a secondary ray whose weight is <= this is not traced
+  bool generic_kernel = false;    // true: the all-features kernel, decided per material
+
+  // Throws rt2::Error for width/height < 1 or > 65535, subpixels < 1 or > 65536,
+  // depth < 0 or > 1'000'000, min_weight NaN or outside [0, 1].
+  void validate() const;
+};
+
+// Rays traced, by kind (primary rays are one per subpixel).
+struct RayCounts {
+  std::uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
+  std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+  RayCounts& operator+=(const RayCounts& o) {
+    primary += o.primary;
+    shadow += o.shadow;
+    reflection += o.reflection;
+    refraction += o.refraction;
+    return *this;
+  }
+};
+
+class Renderer {
+ public:
+  // Keeps references to scene and accel: both must outlive the Renderer.
+  Renderer(const Scene& scene, const Accel& accel, const RenderSettings& settings);
+
+  // Renders rows [y0, y1) into `image` (which must be settings.width x settings.height)
+  // and adds the rays traced to `counts`. Deterministic per pixel; safe to call from
+  // several threads at once for disjoint rows.
+  void render_rows(int y0, int y1, Image& image, RayCounts& counts) const {
+    kernel_(*this, y0, y1, image, counts);
+  }
+
+  const Scene& scene() const { return scene_; }
+  const Accel& accel() const { return accel_; }
+  const RenderSettings& settings() const { return settings_; }
+  const std::vector<SubpixelOffset>& offsets() const { return offsets_; }
+  // The features of the scene, and those the chosen kernel was compiled for.
+  unsigned scene_features() const { return scene_features_; }
+  unsigned kernel_features() const { return kernel_features_; }
+
+  using Kernel = void (*)(const Renderer&, int, int, Image&, RayCounts&);
+
+ private:
+  const Scene& scene_;
+  const Accel& accel_;
+  RenderSettings settings_;
+  std::vector<SubpixelOffset> offsets_;
+  unsigned scene_features_;
+  unsigned kernel_features_;
+  Kernel kernel_;
+};
+
+// The kernel for feature set F (defined in tracer.h, instantiated in kernels.cpp).
+template <unsigned F>
+void render_rows_kernel(const Renderer& r, int y0, int y1, Image& image, RayCounts& counts);
+
+}  // namespace rt2

@@ -1,0 +1,42 @@
+// rt2/scene_io.h — loading scenes: TOML scene files (toml++) and OBJ/MTL meshes
+// (tinyobjloader).
+//
+// The scene format and the MTL → Material mapping are documented in scenes/FORMAT.md. Every
+// problem in the input — a missing file, a syntax error, an unknown key, a value out of
+// range, a bad face index — is reported by throwing rt2::Error with a one-line message that
+// starts with the file and, where there is one, the line and column:
+//   scenes/x.toml:12:10: spheres[1].radius must be > 0 (got -1)
+//   scenes/room.obj:7: face references vertex 9, but only 8 vertices are defined
+// No other exception escapes these functions, and the loaded scene has passed
+// Scene::validate(). Non-fatal problems (a missing MTL library) are printed to stderr as one
+// `warning: ...` line each.
+#pragma once
+
+#include <string>
+
+#include "rt2/error.h"
+#include "rt2/mesh.h"
+#include "rt2/scene.h"
+
+namespace rt2 {
+
+// Loads `path`: a .toml scene file, or a bare .obj mesh which is framed automatically.
+// Throws rt2::Error with a one-line message on any problem.
+Scene load_scene(const std::string& path);
+
+// Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
+Scene load_toml_scene(const std::string& path);
+
+// A bare OBJ, framed: camera from its bounding box (looking at the centre from the front,
+// slightly above, the whole box in view), one white light above-front, a ground plane with a
+// checker material just under the box, MTL materials or a default grey material.
+Scene frame_obj(const std::string& obj_path);
+
+// Reads an OBJ (and its MTL libraries) through tinyobjloader into a Mesh. Each face's material
+// is `override_material` when >= 0, else the MTL material (added to `scene`; name
+// "<objfile>:<mtlname>"), else a default material (added once, name "default"). Degenerate
+// faces (zero/non-finite area) are dropped and added to scene.degenerate_triangles. Positions
+// and normals get w = 0. On an error `scene` is left as it was.
+Mesh load_obj(const std::string& path, Scene& scene, int override_material = -1);
+
+}  // namespace rt2

@@ -1,0 +1,202 @@
+// rt2/tracer.h — the per-pixel kernel: Whitted ray tracing with Phong shading (thesis 3.1,
+// 3.2), as a template over the scene's feature bits (rt2/features.h).
+//
+// Included only by kernels.cpp (which instantiates it) and by tests. Recursion is
+// iterative: a pixel's rays form a tree (reflection and refraction split it), walked
+// depth-first with an explicit stack whose size grows with the recursion depth, so a
+// depth of 10,000 cannot overflow the thread's stack. A ray's contribution is its weight
+// (the product of the Kr / Kt factors along its path) times the local Phong colour where
+// it lands; a child ray is traced only while depth < settings.depth and its weight
+// exceeds settings.min_weight.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "rt2/offset.h"
+#include "rt2/render.h"
+
+namespace rt2 {
+namespace detail {
+
+struct Task {
+  Ray ray;
+  float weight;
+  int depth;
+  RayKind kind;
+};
+
+// What shading needs to know about a hit.
+struct SurfacePoint {
+  vec4 p;                   // on the surface, computed precisely (see offset.h)
+  vec4 ng;                  // unit geometric normal, on the side the ray came from
+  vec4 ns;                  // unit shading normal, same side
+  bool entering;            // the ray hit the outside (against the outward normal)
+  std::uint32_t material;
+};
+
+template <unsigned F>
+inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h) {
+  SurfacePoint s;
+  const std::uint32_t i = prim_index(h.prim);
+  if (prim_tag(h.prim) == kTriangleTag) {
+    const Triangle& tri = acc.tris[i];
+    s.p = tri.v0 - h.u * tri.e1 + h.v * tri.e2;  // (1-u-v) V0 + u V1 + v V2
+    s.ng = normalize(tri.n);
+    if (acc.tri_normals.empty()) {
+      s.ns = s.ng;
+    } else {
+      const auto& n = acc.tri_normals[i];
+      s.ns = normalize((1.0f - h.u - h.v) * n[0] + h.u * n[1] + h.v * n[2]);
+    }
+  } else if (prim_tag(h.prim) == kSphereTag) {
+    const Sphere& sp = acc.spheres[i];
+    s.ng = sphere_normal(sp, ray.at(h.t));
+    s.p = sp.center + s.ng * sp.radius;  // re-projected onto the surface
+    s.ns = s.ng;
+  } else {
+    const Plane& pl = acc.planes[i];
+    const vec4 q = ray.at(h.t);
+    s.p = q - pl.n * (float(dot(q, pl.n)) + pl.d);  // projected onto the plane
+    s.ng = s.ns = pl.n;
+  }
+  s.material = acc.material_of(h.prim);
+  s.entering = dot(ray.dir, s.ng) < 0.0f;
+  if (!s.entering) {
+    s.ng = -s.ng;
+    s.ns = -s.ns;
+  }
+  if (!(dot(s.ns, ray.dir) < 0.0f)) s.ns = s.ng;  // an interpolated normal facing away
+  return s;
+}
+
+// Kd at p: the material's diffuse colour, or its checker's second colour.
+inline vec4 diffuse_at(const Material& m, const vec4& p) {
+  if (!(m.checker_scale > 0.0f)) return m.diffuse;
+  const float inv = 1.0f / m.checker_scale;
+  const auto cell = [&](int a) { return static_cast<long long>(std::floor(p[a] * inv)); };
+  return ((cell(0) + cell(1) + cell(2)) & 1) ? m.diffuse2 : m.diffuse;
+}
+
+// I_local = Ka I_amb + sum over lights that reach p of Kd I (L·N) + Ks I (R·V)^n, with I
+// attenuated by transparent occluders (thesis 3.2; SPEC "Shading").
+template <unsigned F>
+inline vec4 shade_local(const Renderer& r, const Ray& ray, const SurfacePoint& s,
+                        RayCounts& counts) {
+  const Scene& sc = r.scene();
+  const Material& m = sc.materials[s.material];
+  vec4 color = m.ambient * sc.ambient;
+  if (sc.lights.empty()) return color;
+  const vec4 kd = diffuse_at(m, s.p);
+  const vec4 origin = offset_ray_origin(s.p, s.ng);
+  const vec4 view = -ray.dir;
+  for (const Light& light : sc.lights) {
+    const vec4 to = light.position - origin;
+    const float dist = std::sqrt(float(dot(to, to)));
+    const vec4 l = to / dist;
+    if (!(dot(l, s.ng) > 0.0f)) continue;  // the light is behind the surface (or at p)
+    const float n_dot_l = dot(s.ns, l);
+    if (!(n_dot_l > 0.0f)) continue;
+    ++counts.shadow;
+    const float passed = transmittance<F>(r.accel(), sc.materials, Ray(origin, l), 0.0f, dist);
+    if (passed == 0.0f) continue;
+    const vec4 li = light.radiance() * passed;
+    color += kd * li * n_dot_l;
+    if constexpr (has_feature<F, kSpecular>) {
+      if (m.has_specular()) {
+        const float r_dot_v = dot(2.0f * n_dot_l * s.ns - l, view);  // R = reflect(-L, N)
+        if (r_dot_v > 0.0f) color += m.specular * li * std::pow(r_dot_v, m.shininess);
+      }
+    }
+  }
+  return color;
+}
+
+// R = I - 2 N (N·I) (thesis formula 1).
+inline vec4 reflect(const vec4& i, const vec4& n) { return i - 2.0f * n * dot(n, i); }
+
+// T = eta I - (cos a + eta (N·I)) N with cos a = sqrt(1 - eta^2 (1 - (N·I)^2)), N facing
+// the incoming ray (N·I < 0). Returns false on total internal reflection (negative root).
+inline bool refract(const vec4& i, const vec4& n, float eta, vec4& t) {
+  const float n_dot_i = dot(n, i);
+  const float k = 1.0f - eta * eta * (1.0f - n_dot_i * n_dot_i);
+  if (k < 0.0f) return false;
+  t = normalize(eta * i - (std::sqrt(k) + eta * n_dot_i) * n);
+  return true;
+}
+
+// The colour seen along `primary`: the sum over the ray tree of weight x local colour.
+template <unsigned F>
+inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stack,
+                  RayCounts& counts) {
+  const RenderSettings& st = r.settings();
+  const Scene& sc = r.scene();
+  vec4 color;
+  stack.clear();
+  stack.push_back({primary, 1.0f, 0, RayKind::primary});
+  while (!stack.empty()) {
+    const Task task = stack.back();
+    stack.pop_back();
+    counts.reflection += task.kind == RayKind::reflection;
+    counts.refraction += task.kind == RayKind::refraction;
+    const Hit h = closest_hit<F>(r.accel(), task.ray, 0.0f, kInfinity);
+    if (!h.found()) {
+      color += task.weight * sc.background;
+      continue;
+    }
+    const SurfacePoint s = surface_at<F>(r.accel(), task.ray, h);
+    color += task.weight * shade_local<F>(r, task.ray, s, counts);
+    if (task.depth >= st.depth) continue;
+    const Material& m = sc.materials[s.material];
+    if constexpr (has_feature<F, kRefraction>) {
+      const float w = task.weight * m.transparency;
+      if (m.transparency > 0.0f && w > st.min_weight) {
+        const float eta = s.entering ? 1.0f / m.ior : m.ior;
+        vec4 t;
+        if (refract(task.ray.dir, s.ns, eta, t))
+          stack.push_back({Ray(offset_ray_origin(s.p, -s.ng), t), w, task.depth + 1,
+                           RayKind::refraction});
+        else  // total internal reflection: the transmitted share is reflected
+          stack.push_back({Ray(offset_ray_origin(s.p, s.ng), reflect(task.ray.dir, s.ns)), w,
+                           task.depth + 1, RayKind::reflection});
+      }
+    }
+    if constexpr (has_feature<F, kReflection>) {
+      const float w = task.weight * m.reflectivity;
+      if (m.reflectivity > 0.0f && w > st.min_weight)
+        stack.push_back({Ray(offset_ray_origin(s.p, s.ng), reflect(task.ray.dir, s.ns)), w,
+                         task.depth + 1, RayKind::reflection});
+    }
+  }
+  return color;
+}
+
+}  // namespace detail
+
+template <unsigned F>
+void render_rows_kernel(const Renderer& r, int y0, int y1, Image& image, RayCounts& counts) {
+  const RenderSettings& st = r.settings();
+  const Camera& cam = r.scene().camera;
+  const auto& offsets = r.offsets();
+  const float inv_n = 1.0f / float(offsets.size());
+  std::vector<detail::Task> stack;  // reused by every pixel of these rows
+  stack.reserve(64);
+  RayCounts local;
+  for (int y = y0; y < y1; ++y) {
+    float* out = image.row(y);
+    for (int x = 0; x < st.width; ++x) {
+      vec4 sum;
+      for (const SubpixelOffset& o : offsets)
+        sum += detail::trace<F>(r, cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height),
+                                stack, local);
+      sum *= inv_n;
+      out[3 * x + 0] = sum[0];
+      out[3 * x + 1] = sum[1];
+      out[3 * x + 2] = sum[2];
+    }
+  }
+  local.primary += std::uint64_t(y1 - y0) * std::uint64_t(st.width) * offsets.size();
+  counts += local;
+}
+
+}  // namespace rt2
