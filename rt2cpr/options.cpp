@@ -1,0 +1,147 @@
+// rt2cpr/options.cpp — CLI11 definitions, presets (SPEC "presets") and validation.
+#include "rt2cpr/options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <iostream>
+#include <map>
+
+#include "rt2/error.h"
+
+namespace rt2cpr {
+
+namespace {
+
+struct Preset {
+  int width, height, subpixels, depth, lights;
+};
+
+// The thesis's presets (table in thesis 5.4).
+const std::map<std::string, Preset> kPresets = {
+    {"low", {512, 512, 1, 1, 1}},
+    {"middle", {800, 600, 2, 2, 1}},
+    {"hard", {1024, 768, 3, 4, 2}},
+    {"veryhard", {1920, 1080, 3, 8, 2}},
+};
+
+const char* kExamples = R"(Examples:
+  rt2cpr --output out/default.png                      render the built-in scene
+  rt2cpr --preset hard --frames 10 --backend tbb       benchmark a thesis preset
+  rt2cpr --scene scenes/glass.toml --subpixels 9 --pattern circle --output glass.exr
+  rt2cpr --scene bunny.obj --output bunny.png          an OBJ alone is framed automatically
+  rt2cpr --preset low --leaf-size 64 --split midpoint --stats run.json
+  rt2cpr --preset middle --lights 8 --depth 16 --min-weight 0 --threads 2 --grain 8
+
+Presets (explicit options override them):
+  low       512x512    subpixels 1  depth 1  lights 1
+  middle    800x600    subpixels 2  depth 2  lights 1
+  hard      1024x768   subpixels 3  depth 4  lights 2
+  veryhard  1920x1080  subpixels 3  depth 8  lights 2
+Without a preset: 800x600, subpixels 1, depth 4, the scene's own lights.
+Extra lights (--lights beyond the scene's own) are white, on a ring above the scene.)";
+
+void apply_preset(const std::string& name, Options& o) {
+  const Preset& p = kPresets.at(name);
+  o.render.width = p.width;
+  o.render.height = p.height;
+  o.render.subpixels = p.subpixels;
+  o.render.depth = p.depth;
+  o.lights = p.lights;
+}
+
+}  // namespace
+
+std::optional<Options> parse_options(int argc, char** argv) {
+  CLI::App app{"rt2cpr — render a scene with rt2, a CPU Whitted ray tracer", "rt2cpr"};
+  app.footer(kExamples);
+  app.get_formatter()->column_width(30);
+
+  Options o;  // defaults without a preset: 800x600, 1 subpixel, depth 4, the scene's lights
+  o.render.width = 800;
+  o.render.height = 600;
+  o.render.depth = 4;
+  int width = 0, height = 0, subpixels = 0, depth = 0, lights = 0, threads = 0,
+      grain = o.schedule.grain;
+  long long leaf = o.bvh.max_leaf_size;
+  float min_weight = o.render.min_weight;
+  std::string pattern = "grid", split = "sah", backend = "omp", kernel = "specialized";
+
+  app.add_option("--scene", o.scene, "scene file (.toml) or mesh (.obj); default: built-in scene");
+  app.add_option("--preset", o.preset, "low | middle | hard | veryhard");
+  app.add_option("--width", width, "image width in pixels");
+  app.add_option("--height", height, "image height in pixels");
+  app.add_option("--subpixels", subpixels, "samples per pixel (>= 1)");
+  app.add_option("--pattern", pattern, "subpixel pattern: grid | circle");
+  app.add_option("--depth", depth, "recursion depth (0 = no reflection/refraction rays)");
+  app.add_option("--min-weight", min_weight, "skip secondary rays weighing <= this [0, 1]");
+  app.add_option("--lights", lights, "total number of lights (scene's first, then extra ones)");
+  app.add_option("--leaf-size", leaf, "BVH maximum primitives per leaf (>= 1)");
+  app.add_option("--split", split, "BVH split: sah | midpoint");
+  app.add_flag("--no-bvh", o.no_bvh, "no BVH: test every primitive (one leaf holds all)");
+  app.add_option("--backend", backend, "serial | omp | tbb");
+  app.add_option("--threads", threads, "threads (0 = all hardware threads)");
+  app.add_option("--grain", grain, "portions of work per thread (>= 1)");
+  app.add_option("--kernel", kernel, "specialized (default) | generic");
+  app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
+  app.add_option("--output", o.output, "image file: .png .exr .ppm .jpg .tif .hdr");
+  app.add_option("--stats", o.stats, "write parameters, times and ray counts as JSON");
+  app.add_option("--reference", o.reference, "reference image: print RMSE, PSNR, SSIM");
+  app.add_flag("--quiet", o.quiet, "print only errors");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    std::string msg = e.what();
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    throw rt2::Error(msg + " (see --help)");
+  }
+
+  if (!o.preset.empty()) {
+    if (!kPresets.count(o.preset))
+      throw rt2::Error("unknown preset '" + o.preset + "' (expected low, middle, hard or veryhard)");
+    apply_preset(o.preset, o);
+  }
+  // Explicit options override the preset.
+  auto given = [&](const char* name) { return app.count(name) > 0; };
+  if (given("--width")) o.render.width = width;
+  if (given("--height")) o.render.height = height;
+  if (given("--subpixels")) o.render.subpixels = subpixels;
+  if (given("--depth")) o.render.depth = depth;
+  if (given("--lights")) o.lights = lights;
+  o.render.min_weight = min_weight;
+  o.render.pattern = rt2::parse_pattern(pattern);
+  if (kernel != "specialized" && kernel != "generic")
+    throw rt2::Error("unknown kernel '" + kernel + "' (expected specialized or generic)");
+  o.render.generic_kernel = kernel == "generic";
+
+  if (split == "sah") o.bvh.split = rt2::Split::sah;
+  else if (split == "midpoint") o.bvh.split = rt2::Split::midpoint;
+  else throw rt2::Error("unknown split '" + split + "' (expected sah or midpoint)");
+  if (leaf < 1 || leaf > UINT32_MAX)
+    throw rt2::Error("leaf-size must be in [1, 4294967295], got " + std::to_string(leaf));
+  o.bvh.max_leaf_size = static_cast<std::uint32_t>(leaf);
+  if (o.no_bvh) o.bvh.max_leaf_size = UINT32_MAX;
+
+  o.schedule.backend = rt2::parse_backend(backend);
+  if (threads < 0 || threads > 1024)
+    throw rt2::Error("threads must be in [1, 1024] (0 = all hardware threads), got " +
+                     std::to_string(threads));
+  o.schedule.threads = threads;
+  if (grain < 1 || grain > 1'000'000)
+    throw rt2::Error("grain must be in [1, 1000000], got " + std::to_string(grain));
+  o.schedule.grain = grain;
+  if (o.frames < 1 || o.frames > 1'000'000)
+    throw rt2::Error("frames must be in [1, 1000000], got " + std::to_string(o.frames));
+  if (o.lights < -1 || o.lights > 1'000'000)
+    throw rt2::Error("lights must be in [0, 1000000], got " + std::to_string(o.lights));
+  o.render.validate();
+  return o;
+}
+
+}  // namespace rt2cpr

@@ -1,0 +1,33 @@
+// rt2cpr/options.h — rt2cpr's command line: every knob of the renderer, the presets, and
+// their validation.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "rt2/bvh/node.h"
+#include "rt2/render.h"
+#include "rt2/schedule.h"
+
+namespace rt2cpr {
+
+struct Options {
+  std::string scene;   // a .toml scene or an .obj; empty: the built-in scene
+  std::string preset;  // low | middle | hard | veryhard, or empty
+  rt2::RenderSettings render;
+  int lights = -1;     // total light count; -1: the scene's own lights
+  rt2::BvhConfig bvh;
+  bool no_bvh = false;  // one leaf holding every primitive (brute force)
+  rt2::Schedule schedule;
+  int frames = 1;
+  std::string output;  // image file; empty: not written
+  std::string stats;   // JSON file; empty: not written
+  std::string reference;  // reference image to compare against; empty: none
+  bool quiet = false;
+};
+
+// Parses argv. Returns nullopt when --help was printed (exit 0). Throws rt2::Error with a
+// one-line message for any bad option or value.
+std::optional<Options> parse_options(int argc, char** argv);
+
+}  // namespace rt2cpr

@@ -1,0 +1,189 @@
+// rt2cpr/report.cpp — console and JSON reporting.
+#include "rt2cpr/report.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include "rt2/error.h"
+#include "rt2/image_compare.h"
+
+namespace rt2cpr {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+std::string utc_now() {
+  char buf[32];
+  const std::time_t t = std::time(nullptr);
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+std::string host_name() {
+  char buf[256] = {};
+  if (::gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+  return buf;
+}
+
+}  // namespace
+
+Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& accel,
+               const rt2::Renderer& renderer, double load_ms) {
+  const rt2::RenderSettings& st = renderer.settings();
+  const rt2::BvhStats& b = accel.bvh.stats;
+  j_ = {
+      {"scene", o.scene.empty() ? "built-in" : o.scene},
+      {"preset", o.preset},
+      {"width", st.width},
+      {"height", st.height},
+      {"subpixels", st.subpixels},
+      {"pattern", rt2::pattern_name(st.pattern)},
+      {"depth", st.depth},
+      {"min_weight", st.min_weight},
+      {"lights", scene.lights.size()},
+      {"leaf_size", o.bvh.max_leaf_size},
+      {"split", o.bvh.split == rt2::Split::sah ? "sah" : "midpoint"},
+      {"bvh", !o.no_bvh},
+      {"backend", rt2::backend_name(o.schedule.backend)},
+      {"threads", rt2::effective_threads(o.schedule)},
+      {"grain", o.schedule.grain},
+      {"frames", o.frames},
+      {"kernel", st.generic_kernel ? "generic" : "specialized"},
+      {"features", rt2::feature_names(renderer.scene_features())},
+      {"kernel_features", rt2::feature_names(renderer.kernel_features())},
+      {"triangles", accel.tris.size()},
+      {"spheres", accel.spheres.size()},
+      {"planes", accel.planes.size()},
+      {"degenerate_triangles", scene.degenerate_triangles},
+      {"scene_load_ms", load_ms},
+      {"bvh_build_ms", b.build_ms},
+      {"bvh_nodes", b.nodes},
+      {"bvh_leaves", b.leaves},
+      {"bvh_depth", b.max_depth},
+      {"machine", host_name()},
+      {"cpu", cpu_model()},
+      {"date", utc_now()},
+  };
+}
+
+void Report::add_frame(const rt2::FrameResult& r) {
+  frame_ms_.push_back(r.ms);
+  rays_ = r.rays;  // identical every frame
+}
+
+double Report::median_ms() const {
+  std::vector<double> v = frame_ms_;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+void Report::compare(const rt2::Image& image, const rt2::Image& reference) {
+  const rt2::ImageError e = rt2::compare_images(image, reference);
+  j_["reference"] = {{"rmse", e.rmse}, {"psnr", e.psnr}, {"ssim", e.ssim}};
+}
+
+void Report::print_setup() const {
+  std::printf("scene %s: %zu triangles, %zu spheres, %zu planes, %zu lights; features %s; "
+              "loaded in %.1f ms\n",
+              j_["scene"].get<std::string>().c_str(), j_["triangles"].get<std::size_t>(),
+              j_["spheres"].get<std::size_t>(), j_["planes"].get<std::size_t>(),
+              j_["lights"].get<std::size_t>(), j_["features"].get<std::string>().c_str(),
+              j_["scene_load_ms"].get<double>());
+  if (j_["degenerate_triangles"].get<std::size_t>() > 0)
+    std::printf("dropped %zu degenerate triangles\n", j_["degenerate_triangles"].get<std::size_t>());
+  std::printf("bvh %s, leaf size %u: %u nodes, %u leaves, depth %u, built in %.1f ms\n",
+              j_["split"].get<std::string>().c_str(), j_["leaf_size"].get<unsigned>(),
+              j_["bvh_nodes"].get<unsigned>(), j_["bvh_leaves"].get<unsigned>(),
+              j_["bvh_depth"].get<unsigned>(), j_["bvh_build_ms"].get<double>());
+  std::printf("%dx%d, %d subpixels (%s), depth %d, min-weight %g, %s kernel; %s, %d threads, "
+              "grain %d\n",
+              j_["width"].get<int>(), j_["height"].get<int>(), j_["subpixels"].get<int>(),
+              j_["pattern"].get<std::string>().c_str(), j_["depth"].get<int>(),
+              j_["min_weight"].get<double>(), j_["kernel"].get<std::string>().c_str(),
+              j_["backend"].get<std::string>().c_str(), j_["threads"].get<int>(),
+              j_["grain"].get<int>());
+}
+
+void Report::print_summary() const {
+  const nlohmann::json j = json();
+  std::printf("fps median %.3f (min %.3f, max %.3f) over %zu frames; %.2f ms/frame median\n",
+              j["fps_median"].get<double>(), j["fps_min"].get<double>(),
+              j["fps_max"].get<double>(), frame_ms_.size(), j["frame_ms_median"].get<double>());
+  std::printf("rays per frame: %llu primary, %llu shadow, %llu reflection, %llu refraction; "
+              "%.2f Mrays/s\n",
+              static_cast<unsigned long long>(rays_.primary),
+              static_cast<unsigned long long>(rays_.shadow),
+              static_cast<unsigned long long>(rays_.reflection),
+              static_cast<unsigned long long>(rays_.refraction), j["mrays_per_s"].get<double>());
+  if (j.contains("reference"))
+    std::printf("against reference: RMSE %.6f, PSNR %.2f dB, SSIM %.5f\n",
+                j["reference"]["rmse"].get<double>(), j["reference"]["psnr"].get<double>(),
+                j["reference"]["ssim"].get<double>());
+}
+
+nlohmann::json Report::json() const {
+  nlohmann::json j = j_;
+  const double med = median_ms();
+  const auto [lo, hi] = std::minmax_element(frame_ms_.begin(), frame_ms_.end());
+  j["frame_ms"] = frame_ms_;
+  j["frame_ms_median"] = med;
+  j["fps_median"] = med > 0 ? 1000.0 / med : 0.0;
+  j["fps_min"] = frame_ms_.empty() ? 0.0 : 1000.0 / *hi;
+  j["fps_max"] = frame_ms_.empty() ? 0.0 : 1000.0 / *lo;
+  j["rays_primary"] = rays_.primary;
+  j["rays_shadow"] = rays_.shadow;
+  j["rays_reflection"] = rays_.reflection;
+  j["rays_refraction"] = rays_.refraction;
+  j["rays_total"] = rays_.total();
+  j["mrays_per_s"] = med > 0 ? double(rays_.total()) / (med * 1e3) : 0.0;
+  return j;
+}
+
+void check_writable_file(const std::string& path) {
+  const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw rt2::Error(path + ": folder '" + dir.string() + "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw rt2::Error(path + ": folder '" + dir.string() + "' is not writable");
+  if (fs::is_directory(path, ec)) throw rt2::Error(path + ": is a directory");
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  check_writable_file(path);
+  const fs::path target(path);
+  const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" +
+                                               std::to_string(::getpid()));
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw rt2::Error(path + ": cannot write");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw rt2::Error(path + ": cannot write: " + ec.message());
+  }
+}
+
+}  // namespace rt2cpr

@@ -1,0 +1,41 @@
+// rt2cpr/report.h — what rt2cpr tells its user: the set-up, per-frame timing with median,
+// min and max, ray counts by kind, Mrays/s, image error against a reference, and all of
+// it as JSON for --stats (keys in snake_case).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rt2/accel.h"
+#include "rt2/image.h"
+#include "rt2/render.h"
+#include "rt2/schedule.h"
+#include "rt2cpr/options.h"
+
+namespace rt2cpr {
+
+class Report {
+ public:
+  Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& accel,
+         const rt2::Renderer& renderer, double load_ms);
+  void add_frame(const rt2::FrameResult& r);
+  // Image error of the last frame against a reference of the same size (RMSE, PSNR, SSIM).
+  void compare(const rt2::Image& image, const rt2::Image& reference);
+  void print_setup() const;
+  void print_summary() const;
+  nlohmann::json json() const;
+
+ private:
+  double median_ms() const;
+  nlohmann::json j_;
+  std::vector<double> frame_ms_;
+  rt2::RayCounts rays_;
+};
+
+// Fails (rt2::Error) unless `path`'s folder exists and is writable.
+void check_writable_file(const std::string& path);
+// Writes via a temporary file renamed over `path`.
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace rt2cpr
