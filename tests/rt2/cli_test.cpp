@@ -1,0 +1,177 @@
+// rt2cpr end to end: options, presets, outputs, and every class of bad input failing with
+// one line on stderr, a non-zero exit and no output file left behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "rt2/image_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("rt2cpr_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+  }
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  Outcome run(const std::string& args) const {
+    const std::string cmd = std::string(RT2CPR_BIN) + " " + args + " >" + path("stdout") +
+                            " 2>" + path("stderr");
+    const int raw = std::system(cmd.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(path("stdout")), slurp(path("stderr"))};
+  }
+  // Only the given files exist in the test folder (besides the captured streams).
+  std::size_t files_other_than_streams() const {
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      const std::string f = e.path().filename().string();
+      n += f != "stdout" && f != "stderr";
+    }
+    return n;
+  }
+  // A failure: non-zero exit, exactly one line on stderr that mentions `needle`.
+  void expect_clean_failure(const Outcome& r, const std::string& needle) const {
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.status, -1) << "crashed";
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+  }
+
+  fs::path dir_;
+};
+
+const char* kTiny = "--width 24 --height 16 --quiet";
+
+TEST_F(Cli, HelpListsOptionsAndExamplesAndExitsZero) {
+  const Outcome r = run("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* s : {"--preset", "--backend", "--grain", "--leaf-size", "--stats", "Examples"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+}
+
+TEST_F(Cli, RendersTheBuiltInSceneToPngWithStatsJson) {
+  const Outcome r = run(std::string(kTiny) + " --frames 2 --output " + path("a.png") + " --stats " +
+                    path("s.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::file_size(path("a.png")) > 0);
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  for (const char* key : {"fps_median", "fps_min", "fps_max", "mrays_per_s", "rays_primary",
+                          "rays_shadow", "rays_reflection", "rays_refraction", "scene_load_ms",
+                          "bvh_build_ms", "frame_ms", "backend", "grain", "leaf_size"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["rays_primary"].get<int>(), 24 * 16);
+  EXPECT_EQ(j["frame_ms"].size(), 2u);
+  EXPECT_EQ(files_other_than_streams(), 2u);  // no temporary files left
+}
+
+TEST_F(Cli, PresetSetsTheThesisValuesAndExplicitOptionsOverrideIt) {
+  ASSERT_EQ(run("--preset hard --width 30 --height 20 --quiet --stats " + path("s.json")).status, 0);
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["width"], 30);
+  EXPECT_EQ(j["subpixels"], 3);
+  EXPECT_EQ(j["depth"], 4);
+  EXPECT_EQ(j["lights"], 2);
+}
+
+TEST_F(Cli, EveryBackendWritesTheSameImage) {
+  for (const char* b : {"serial", "omp", "tbb"})
+    ASSERT_EQ(run(std::string(kTiny) + " --backend " + b + " --output " + path(std::string(b) + ".exr")).status, 0);
+  // Compare decoded pixels: the files' headers carry a timestamp.
+  const rt2::Image serial = rt2::read_image(path("serial.exr"));
+  EXPECT_EQ(serial.rgb, rt2::read_image(path("omp.exr")).rgb);
+  EXPECT_EQ(serial.rgb, rt2::read_image(path("tbb.exr")).rgb);
+}
+
+TEST_F(Cli, MissingSceneFileFailsNamingIt) {
+  expect_clean_failure(run("--scene " + path("nope.toml") + " --output " + path("x.png")), "nope.toml");
+  EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+TEST_F(Cli, MalformedSceneFileFailsWithFileAndLine) {
+  write("bad.toml", "[camera]\nposition = [0, 1, 6]\nlook_at = [0, 1\n");
+  expect_clean_failure(run("--scene " + path("bad.toml")), "bad.toml:");
+}
+
+TEST_F(Cli, NaNCoordinatesInASceneFail) {
+  write("nan.toml",
+        "[camera]\nposition = [0, 1, 6]\nlook_at = [0, 1, 0]\n[materials.m]\n"
+        "[[spheres]]\ncenter = [nan, 0, 0]\nradius = 1\nmaterial = \"m\"\n");
+  expect_clean_failure(run("--scene " + path("nan.toml")), "nan.toml:");
+}
+
+TEST_F(Cli, ObjWithIndexOutOfRangeFails) {
+  write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+  expect_clean_failure(run("--scene " + path("bad.obj")), "bad.obj");
+}
+
+TEST_F(Cli, AbsurdParametersFailBeforeRendering) {
+  expect_clean_failure(run("--width -4"), "width");
+  expect_clean_failure(run("--subpixels 0"), "subpixels");
+  expect_clean_failure(run("--depth -1"), "depth");
+  expect_clean_failure(run("--min-weight nan"), "min-weight");
+  expect_clean_failure(run("--threads -2"), "threads");
+  expect_clean_failure(run("--grain 0"), "grain");
+  expect_clean_failure(run("--frames 0"), "frames");
+  expect_clean_failure(run("--leaf-size 0"), "leaf-size");
+  expect_clean_failure(run("--width abc"), "width");
+  expect_clean_failure(run("--no-such-option"), "no-such-option");
+}
+
+TEST_F(Cli, UnknownBackendPresetPatternSplitAndKernelFail) {
+  expect_clean_failure(run("--backend cuda"), "cuda");
+  expect_clean_failure(run("--preset ultra"), "ultra");
+  expect_clean_failure(run("--pattern hexagon"), "hexagon");
+  expect_clean_failure(run("--split median"), "median");
+  expect_clean_failure(run("--kernel fast"), "fast");
+}
+
+TEST_F(Cli, ImageLargerThanMemoryFailsBeforeAllocating) {
+  expect_clean_failure(run("--width 65535 --height 65535 --output " + path("huge.exr")), "GiB");
+  EXPECT_FALSE(fs::exists(path("huge.exr")));
+}
+
+TEST_F(Cli, UnwritableOrUnsupportedOutputFailsAndLeavesNoFile) {
+  expect_clean_failure(run(std::string(kTiny) + " --output " + path("missing/dir/x.png")), "does not exist");
+  expect_clean_failure(run(std::string(kTiny) + " --output " + path("x.xyz")), "unsupported");
+  expect_clean_failure(run(std::string(kTiny) + " --stats " + path("missing/s.json")), "does not exist");
+  EXPECT_EQ(files_other_than_streams(), 0u);
+}
+
+TEST_F(Cli, AnObjAloneIsFramedAndRendered) {
+  write("tri.obj", "v -1 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0.5 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
+  const Outcome r = run(std::string(kTiny) + " --scene " + path("tri.obj") + " --output " + path("t.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("t.png")));
+}
+
+}  // namespace

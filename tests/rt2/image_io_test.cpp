@@ -1,0 +1,117 @@
+// Image files through OpenImageIO: formats round-trip, failures leave no file behind, and
+// the image comparison measures what it says.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "rt2/error.h"
+#include "rt2/image_compare.h"
+#include "rt2/image_io.h"
+
+namespace rt2 {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("rt2_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+Image gradient(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float* p = img.row(y) + 3 * x;
+      p[0] = float(x) / float(w - 1);
+      p[1] = float(y) / float(h - 1);
+      p[2] = 0.25f;
+    }
+  return img;
+}
+
+TEST(ImageIo, PngExrAndPpmRoundTripWithinTheirPrecision) {
+  const fs::path d = temp_dir("roundtrip");
+  const Image img = gradient(37, 21);
+  for (const char* ext : {".png", ".exr", ".ppm"}) {
+    const std::string path = (d / (std::string("img") + ext)).string();
+    write_image(path, img);
+    const Image back = read_image(path);
+    ASSERT_EQ(back.width, 37);
+    ASSERT_EQ(back.height, 21);
+    const float tol = std::string(ext) == ".exr" ? 0.0f : 0.5f / 255.0f + 1e-6f;
+    for (std::size_t i = 0; i < img.rgb.size(); ++i) ASSERT_NEAR(back.rgb[i], img.rgb[i], tol) << ext;
+  }
+  // No temporary files remain.
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(d)) files += e.is_regular_file();
+  EXPECT_EQ(files, 3u);
+  fs::remove_all(d);
+}
+
+TEST(ImageIo, MissingFolderUnsupportedExtensionAndDirectoryTargetFailCleanly) {
+  const fs::path d = temp_dir("bad");
+  const Image img = gradient(4, 4);
+  EXPECT_THROW(write_image((d / "no/such/dir/x.png").string(), img), Error);
+  EXPECT_THROW(write_image((d / "x.notaformat").string(), img), Error);
+  EXPECT_THROW(write_image((d / "noextension").string(), img), Error);
+  fs::create_directories(d / "adir.png");
+  EXPECT_THROW(write_image((d / "adir.png").string(), img), Error);
+  std::size_t files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(d)) files += e.is_regular_file();
+  EXPECT_EQ(files, 0u);
+  fs::remove_all(d);
+}
+
+TEST(ImageIo, UnwritableFolderFailsAndLeavesNoFile) {
+  if (::geteuid() != 0) {  // a read-only folder stops an ordinary user before writing
+    const fs::path d = temp_dir("ro");
+    ::chmod(d.c_str(), 0555);
+    EXPECT_THROW(check_writable_image((d / "x.png").string()), Error);
+    ::chmod(d.c_str(), 0755);
+    fs::remove_all(d);
+  }
+  // /proc refuses new files even to root: the write itself fails, cleanly.
+  EXPECT_THROW(write_image("/proc/rt2_test_image.png", gradient(4, 4)), Error);
+  EXPECT_FALSE(fs::exists("/proc/rt2_test_image.png"));
+}
+
+TEST(ImageIo, ErrorsAreOneLine) {
+  try {
+    write_image("/nonexistent-dir-rt2/x.png", gradient(2, 2));
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir-rt2"), std::string::npos);
+  }
+  EXPECT_THROW(read_image("/nonexistent-dir-rt2/x.png"), Error);
+}
+
+TEST(ImageCompare, IdenticalImagesHaveZeroErrorInfinitePsnrAndSsimOne) {
+  const Image a = gradient(40, 30);
+  const ImageError e = compare_images(a, a);
+  EXPECT_EQ(e.rmse, 0.0);
+  EXPECT_TRUE(std::isinf(e.psnr));
+  EXPECT_NEAR(e.ssim, 1.0, 1e-12);
+}
+
+TEST(ImageCompare, RmseAndPsnrMatchTheirDefinitions) {
+  const Image a = gradient(40, 30);
+  Image b = a;
+  for (float& v : b.rgb) v += 0.1f;  // constant offset: RMSE 0.1, PSNR 20 dB
+  const ImageError e = compare_images(b, a);
+  EXPECT_NEAR(e.rmse, 0.1, 1e-5);
+  EXPECT_NEAR(e.psnr, 20.0, 1e-3);
+  EXPECT_LT(e.ssim, 1.0);
+  Image noisy = a;
+  for (std::size_t i = 0; i < noisy.rgb.size(); i += 7) noisy.rgb[i] = 1.0f - noisy.rgb[i];
+  EXPECT_LT(compare_images(noisy, a).ssim, e.ssim);  // structure damage costs more
+  EXPECT_THROW(compare_images(gradient(4, 4), gradient(5, 4)), Error);
+}
+
+}  // namespace
+}  // namespace rt2

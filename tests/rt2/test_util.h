@@ -1,0 +1,117 @@
+// tests/rt2/test_util.h — fixed-seed random geometry and rays, and small scenes, shared by
+// the rt2 tests.
+#pragma once
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "rt2/accel.h"
+#include "rt2/scene.h"
+
+namespace rt2::test {
+
+// Sanitizer builds run the same tests on fewer random samples (they are ~10x slower).
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr int kSampleScale = 10;
+#else
+inline constexpr int kSampleScale = 1;
+#endif
+
+inline vec4 random_point(std::mt19937& rng, float lo, float hi) {
+  std::uniform_real_distribution<float> u(lo, hi);
+  return vec4(u(rng), u(rng), u(rng));
+}
+
+inline vec4 random_direction(std::mt19937& rng) {
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (;;) {
+    const vec4 d(n(rng), n(rng), n(rng));
+    if (float(dot(d, d)) > 1e-6f) return normalize(d);
+  }
+}
+
+// n random triangles of edge length up to `size` inside [-1, 1]^3.
+inline Mesh random_soup(std::size_t n, float size, unsigned seed, std::uint32_t material = 0) {
+  std::mt19937 rng(seed);
+  Mesh m;
+  m.name = "soup";
+  for (std::size_t i = 0; i < n; ++i) {
+    const vec4 c = random_point(rng, -1.0f, 1.0f);
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    for (int k = 0; k < 3; ++k) m.positions.push_back(c + size * random_point(rng, -0.5f, 0.5f));
+    m.faces.push_back({base, base + 1, base + 2});
+    m.face_materials.push_back(material);
+  }
+  m.drop_degenerate();
+  return m;
+}
+
+// A scene holding just geometry, one grey material and a camera; no lights.
+inline Scene geometry_scene(std::vector<Mesh> meshes, std::vector<Sphere> spheres = {}) {
+  Scene s;
+  s.add_material("grey", Material{});
+  s.meshes = std::move(meshes);
+  s.spheres = std::move(spheres);
+  s.sphere_materials.assign(s.spheres.size(), 0);
+  return s;
+}
+
+// Rays for checking intersection code: half from random origins in random directions,
+// half aimed from random origins at random points of random triangles (so most hit).
+inline std::vector<Ray> random_rays(const Accel& acc, std::size_t n, unsigned seed,
+                                    float spread = 3.0f) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Ray> rays;
+  rays.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const vec4 org = random_point(rng, -spread, spread);
+    if (i % 2 == 0 || acc.tris.empty()) {
+      rays.emplace_back(org, random_direction(rng));
+      continue;
+    }
+    const Triangle& t = acc.tris[rng() % acc.tris.size()];
+    float a = u(rng), b = u(rng);
+    if (a + b > 1.0f) {
+      a = 1.0f - a;
+      b = 1.0f - b;
+    }
+    const vec4 target = t.v0 - a * t.e1 + b * t.e2;
+    const vec4 d = target - org;
+    if (float(dot(d, d)) < 1e-12f) continue;
+    rays.emplace_back(org, normalize(d));
+  }
+  return rays;
+}
+
+// The nearest hit by testing every primitive: the oracle for the BVH.
+inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max) {
+  Hit h;
+  h.t = t_max;
+  for (std::uint32_t i = 0; i < acc.tris.size(); ++i) {
+    float t, u, v;
+    if (intersect(acc.tris[i], r, t_min, h.t, t, u, v)) {
+      h.t = t;
+      h.prim = kTriangleTag | i;
+    }
+  }
+  for (std::uint32_t i = 0; i < acc.spheres.size(); ++i) {
+    float t;
+    if (intersect(acc.spheres[i], r, t_min, h.t, t)) {
+      h.t = t;
+      h.prim = kSphereTag | i;
+    }
+  }
+  for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
+    float t;
+    if (intersect(acc.planes[i], r, t_min, h.t, t)) {
+      h.t = t;
+      h.prim = kPlaneTag | i;
+    }
+  }
+  if (!h.found()) h.t = kInfinity;
+  return h;
+}
+
+}  // namespace rt2::test
