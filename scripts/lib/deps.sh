@@ -5,7 +5,8 @@
 # RT2_BUILD_PACKAGES       everything the build and the tests need.
 
 RT2_BUILD_PACKAGES="scons g++ pkg-config libgtest-dev libgmock-dev libtbb-dev \
-libtinyobjloader-dev libopenimageio-dev openimageio-tools libcli11-dev libtomlplusplus-dev jq"
+libtinyobjloader-dev libopenimageio-dev openimageio-tools libcli11-dev libtomlplusplus-dev \
+nlohmann-json3-dev jq"
 
 ensure_packages() {
   local missing=() pkg
