@@ -1,7 +1,7 @@
 // mlib/expr.h — expression-template nodes over four-float SIMD values.
 //
 // `a + b * dot(c, d) - 0.5f * e` does not compute anything when it is written: it builds a
-// tree of the node types below, whose operands are held by value (a leaf is one __m128, so
+// tree of the node types below, whose operands are held by value (a leaf is 16 bytes, so
 // the copy is a register move after inlining and an expression can never dangle). The tree
 // is evaluated once, lane-parallel, by `eval()` when it is assigned to a vec4 or converted
 // to float; with every `eval` forced inline, what is left is the bare SSE instruction

@@ -9,8 +9,6 @@
 //   every ordered comparison (lt, le, gt, ge, eq) is false in a NaN lane; ne is true.
 #pragma once
 
-#include <smmintrin.h>  // SSE4.1
-
 #include <cstdint>
 
 #if defined(__GNUC__)
@@ -18,6 +16,15 @@
 #else
 #define MLIB_INLINE inline
 #endif
+
+// MLIB_SCALAR (scons arch=scalar) swaps the whole file for the same API in plain lane-by-
+// lane C++: the thesis's "no SIMD" baseline, measured against the SSE code below. Nothing
+// above this layer changes, so the two builds differ only in how f4 is computed.
+#if defined(MLIB_SCALAR)
+#include "mlib/simd_scalar.h"
+#else
+
+#include <smmintrin.h>  // SSE4.1
 
 namespace mlib::simd {
 
@@ -120,3 +127,5 @@ MLIB_INLINE std::uint32_t pack_rgb8(f4 a) {
 }
 
 }  // namespace mlib::simd
+
+#endif  // MLIB_SCALAR

@@ -1,4 +1,5 @@
-// mlib/vec4.h — four floats in one 16-byte-aligned __m128, the value type of rt2's math.
+// mlib/vec4.h — four floats in one 16-byte-aligned SIMD register (an __m128; a plain
+// float[4] in the scalar build), the value type of rt2's math.
 //
 // vec4 is a leaf of the expression templates (mlib/expr.h): arithmetic on vec4s builds an
 // expression tree, and assigning the tree to a vec4 evaluates it once. Every constructor
@@ -90,7 +91,8 @@ class alignas(16) vec4 {
     return *this;
   }
 
-  // Lane access (i in 0..3, unchecked). __m128 may alias float, so this is well defined.
+  // Lane access (i in 0..3, unchecked). Well defined: __m128 may alias float, and the scalar
+  // build's f4 begins with float[4].
   MLIB_INLINE float operator[](std::size_t i) const {
     return reinterpret_cast<const float*>(&m_)[i];
   }
@@ -104,6 +106,6 @@ class alignas(16) vec4 {
   simd::f4 m_;
 };
 
-static_assert(sizeof(vec4) == 16 && alignof(vec4) == 16, "vec4 is exactly one __m128");
+static_assert(sizeof(vec4) == 16 && alignof(vec4) == 16, "vec4 is exactly four floats");
 
 }  // namespace mlib

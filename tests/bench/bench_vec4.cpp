@@ -16,6 +16,7 @@
 // The inputs cycle through 1024 random (a, b) pairs and every result is stored to an
 // array that is checksummed at the end, so no work can be hoisted out of the timed loop.
 #include <CLI/CLI.hpp>
+#include <smmintrin.h>
 
 #include <algorithm>
 #include <cstdint>

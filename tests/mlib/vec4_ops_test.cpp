@@ -62,7 +62,8 @@ TEST(Vec4Construct, LoadsFromUnalignedPointer) {
 }
 
 TEST(Vec4Construct, M128RoundTripsAndStoreWritesAllLanes) {
-  const __m128 m = _mm_setr_ps(-1.0f, 0.5f, 1e30f, -0.0f);
+  // Through mlib::simd rather than _mm_ intrinsics, so it also runs in the scalar build.
+  const simd::f4 m = simd::setr(-1.0f, 0.5f, 1e30f, -0.0f);
   const vec4 v(m);
   float out[4];
   v.store(out);
@@ -70,8 +71,8 @@ TEST(Vec4Construct, M128RoundTripsAndStoreWritesAllLanes) {
   EXPECT_EQ(out[1], 0.5f);
   EXPECT_EQ(out[2], 1e30f);
   EXPECT_TRUE(same_bits(out[3], -0.0f));
-  const __m128 back = v.m128();
-  EXPECT_EQ(_mm_movemask_ps(_mm_cmpeq_ps(back, m)), 0xF);
+  const simd::f4 back = v.m128();
+  EXPECT_EQ(simd::movemask(simd::cmp_eq(back, m)), 0xF);
 }
 
 TEST(Vec4Construct, CopyAndAssignPreserveBits) {

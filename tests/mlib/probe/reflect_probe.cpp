@@ -4,7 +4,8 @@
 
 using mlib::vec4;
 
-extern "C" __m128 reflect_probe_regs(__m128 n_, __m128 i_) {
+// simd::f4 is __m128 in the SSE build and a plain struct in the scalar one (MLIB_SCALAR).
+extern "C" mlib::simd::f4 reflect_probe_regs(mlib::simd::f4 n_, mlib::simd::f4 i_) {
   const vec4 n(n_), i(i_);
   const vec4 r = i - 2.0f * n * dot(n, i);
   return r.m128();
