@@ -71,6 +71,29 @@ double ssim(const Image& a, const Image& b) {
   return total / double(n);
 }
 
+double edge_rmse(const Image& image, const Image& reference, std::size_t& pixels) {
+  const int w = reference.width, h = reference.height;
+  const std::vector<float> y = luminance(reference);
+  double sum = 0;
+  pixels = 0;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      float lo = 1.0f, hi = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const float v = y[std::size_t(std::clamp(py + dy, 0, h - 1)) * w + std::clamp(px + dx, 0, w - 1)];
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+      if (hi - lo <= 0.1f) continue;
+      ++pixels;
+      const float* a = image.pixel(px, py);
+      const float* b = reference.pixel(px, py);
+      for (int c = 0; c < 3; ++c) sum += double(a[c] - b[c]) * double(a[c] - b[c]);
+    }
+  return pixels ? std::sqrt(sum / (3.0 * double(pixels))) : 0.0;
+}
+
 ImageError compare_images(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height)
     throw Error("reference image is " + std::to_string(reference.width) + "x" +
@@ -79,6 +102,7 @@ ImageError compare_images(const Image& image, const Image& reference) {
   ImageError e;
   rmse_psnr(image, reference, e.rmse, e.psnr);
   e.ssim = ssim(image, reference);
+  e.edge_rmse = edge_rmse(image, reference, e.edge_pixels);
   return e;
 }
 

@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +35,19 @@ std::string utc_now() {
   return buf;
 }
 
+// A float as the shortest decimal that reads back as the same float (0.01f -> 0.01, not
+// 0.009999999776482582 as its double would print).
+double json_float(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(v));
+  for (int digits = 1; digits <= 9; ++digits) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", digits, static_cast<double>(v));
+    if (std::strtof(shorter, nullptr) == v) return std::strtod(shorter, nullptr);
+  }
+  return std::strtod(buf, nullptr);
+}
+
 std::string host_name() {
   char buf[256] = {};
   if (::gethostname(buf, sizeof buf - 1) != 0) return "unknown";
@@ -53,7 +68,7 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"subpixels", st.subpixels},
       {"pattern", rt2::pattern_name(st.pattern)},
       {"depth", st.depth},
-      {"min_weight", st.min_weight},
+      {"min_weight", json_float(st.min_weight)},
       {"lights", scene.lights.size()},
       {"leaf_size", o.bvh.max_leaf_size},
       {"split", o.bvh.split == rt2::Split::sah ? "sah" : "midpoint"},
@@ -94,7 +109,12 @@ double Report::median_ms() const {
 
 void Report::compare(const rt2::Image& image, const rt2::Image& reference) {
   const rt2::ImageError e = rt2::compare_images(image, reference);
-  j_["reference"] = {{"rmse", e.rmse}, {"psnr", e.psnr}, {"ssim", e.ssim}};
+  // JSON has no infinity: identical images report PSNR as null.
+  j_["reference"] = {{"rmse", e.rmse},
+                     {"psnr", std::isfinite(e.psnr) ? nlohmann::json(e.psnr) : nlohmann::json()},
+                     {"ssim", e.ssim},
+                     {"edge_rmse", e.edge_rmse},
+                     {"edge_pixels", e.edge_pixels}};
 }
 
 void Report::print_setup() const {
@@ -130,10 +150,15 @@ void Report::print_summary() const {
               static_cast<unsigned long long>(rays_.shadow),
               static_cast<unsigned long long>(rays_.reflection),
               static_cast<unsigned long long>(rays_.refraction), j["mrays_per_s"].get<double>());
-  if (j.contains("reference"))
-    std::printf("against reference: RMSE %.6f, PSNR %.2f dB, SSIM %.5f\n",
-                j["reference"]["rmse"].get<double>(), j["reference"]["psnr"].get<double>(),
-                j["reference"]["ssim"].get<double>());
+  if (j.contains("reference")) {
+    const auto& r = j["reference"];
+    std::printf("against reference: RMSE %.6f, PSNR %s dB, SSIM %.5f, edge RMSE %.6f over %zu "
+                "edge pixels\n",
+                r["rmse"].get<double>(),
+                r["psnr"].is_null() ? "inf" : std::to_string(r["psnr"].get<double>()).c_str(),
+                r["ssim"].get<double>(), r["edge_rmse"].get<double>(),
+                r["edge_pixels"].get<std::size_t>());
+  }
 }
 
 nlohmann::json Report::json() const {

@@ -167,6 +167,22 @@ TEST_F(Cli, UnwritableOrUnsupportedOutputFailsAndLeavesNoFile) {
   EXPECT_EQ(files_other_than_streams(), 0u);
 }
 
+TEST_F(Cli, ReferenceComparisonIsPrintedAndWrittenToStats) {
+  ASSERT_EQ(run(std::string(kTiny) + " --subpixels 16 --output " + path("ref.exr")).status, 0);
+  const Outcome same = run(std::string(kTiny) + " --subpixels 16 --reference " + path("ref.exr") +
+                           " --stats " + path("same.json"));
+  ASSERT_EQ(same.status, 0) << same.err;
+  const auto j = nlohmann::json::parse(slurp(path("same.json")));
+  EXPECT_EQ(j["reference"]["rmse"].get<double>(), 0.0);
+  EXPECT_TRUE(j["reference"]["psnr"].is_null());  // +inf has no JSON form
+  ASSERT_EQ(run(std::string(kTiny) + " --reference " + path("ref.exr") + " --stats " + path("one.json")).status, 0);
+  const auto k = nlohmann::json::parse(slurp(path("one.json")));
+  EXPECT_GT(k["reference"]["rmse"].get<double>(), 0.0);
+  EXPECT_GT(k["reference"]["edge_pixels"].get<int>(), 0);
+  EXPECT_GT(k["reference"]["edge_rmse"].get<double>(), 0.0);  // 1 sample against 16 differs
+  expect_clean_failure(run("--width 10 --height 10 --quiet --reference " + path("ref.exr")), "reference image is 24x16");
+}
+
 TEST_F(Cli, AnObjAloneIsFramedAndRendered) {
   write("tri.obj", "v -1 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0.5 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
   const Outcome r = run(std::string(kTiny) + " --scene " + path("tri.obj") + " --output " + path("t.png"));

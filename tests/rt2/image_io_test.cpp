@@ -113,5 +113,26 @@ TEST(ImageCompare, RmseAndPsnrMatchTheirDefinitions) {
   EXPECT_THROW(compare_images(gradient(4, 4), gradient(5, 4)), Error);
 }
 
+TEST(ImageCompare, EdgeErrorCountsOnlyPixelsNearTheReferencesEdges) {
+  // Reference: a vertical black/white edge at x = 10 in a 20x8 image.
+  Image ref(20, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 10; x < 20; ++x)
+      for (int c = 0; c < 3; ++c) ref.row(y)[3 * x + c] = 1.0f;
+  // An error far from the edge changes RMSE but not the edge error...
+  Image flat_error = ref;
+  flat_error.row(4)[3 * 2] = 0.5f;
+  std::size_t n = 0;
+  EXPECT_EQ(edge_rmse(flat_error, ref, n), 0.0);
+  EXPECT_EQ(n, 8u * 2u);  // columns 9 and 10 see both colours in their 3x3 neighbourhood
+  EXPECT_GT(compare_images(flat_error, ref).rmse, 0.0);
+  // ...an error on the edge shows in both.
+  Image edge_error = ref;
+  for (int c = 0; c < 3; ++c) edge_error.row(3)[3 * 10 + c] = 0.5f;
+  const ImageError e = compare_images(edge_error, ref);
+  EXPECT_NEAR(e.edge_rmse, std::sqrt(0.25 / 16.0), 1e-9);
+  EXPECT_EQ(e.edge_pixels, 16u);
+}
+
 }  // namespace
 }  // namespace rt2
