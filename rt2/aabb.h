@@ -35,6 +35,11 @@ struct Aabb {
   }
 };
 
+// 1 + 2 gamma(3) (Ize 2013): how much a rounded slab distance may undershoot the exact
+// one. The far distance is multiplied by it; so is the closest hit when a stored entry
+// distance is compared with it (traverse.h).
+inline constexpr float kSlabPad = 1.0f + 2.0f * (3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f));
+
 // Slab test of lanes x y z (w is ignored). Returns the entry distance, or +inf for a miss
 // of the interval [t_min, t_max].
 //
@@ -54,8 +59,7 @@ inline float slab_entry(const vec4& lo, const vec4& hi, const RayPre& r, float t
   const vec4 far = mlib::max(mlib::min(t0, pos_inf), mlib::min(t1, pos_inf));
   const float tn = std::max(t_min, mlib::hmax3(near));
   float tf = std::min(t_max, mlib::hmin3(far));
-  constexpr float kGamma3 = 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f);
-  tf *= 1.0f + 2.0f * kGamma3;
+  tf *= kSlabPad;
   return tn <= tf ? tn : kInfinity;
 }
 

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "rt2/bvh/build.h"
@@ -48,22 +49,41 @@ struct Accel {
   }
 };
 
+// The per-ray form the triangle test needs: the watertight test's sheared ray (computed
+// once per query), or nothing for the fast test.
+struct NoShear {
+  explicit NoShear(const Ray&) {}
+};
+template <unsigned F>
+using ShearFor = std::conditional_t<has_feature<F, kWatertight>, WatertightRay, NoShear>;
+
+template <unsigned F>
+inline bool intersect_triangle(const Triangle& tri, const Ray& ray, const ShearFor<F>& shear,
+                               float t_min, float t_max, float& t, float& u, float& v) {
+  if constexpr (has_feature<F, kWatertight>)
+    return intersect_watertight(tri, shear, t_min, t_max, t, u, v);
+  else
+    return intersect(tri, ray, t_min, t_max, t, u, v);
+}
+
 // The leaf test shared by both queries: calls on_hit(ref, t, u, v) for every primitive of
 // the leaf hit inside (t_min, t_max); on_hit returns true to stop. With Closest, each hit
 // shrinks t_max so that later primitives must be nearer.
 template <unsigned F, bool Closest, class OnHit>
-inline bool test_leaf(const Accel& acc, const Ray& ray, std::uint32_t first, std::uint32_t count,
-                      float t_min, float t_max, OnHit&& on_hit) {
+inline bool test_leaf(const Accel& acc, const Ray& ray, const ShearFor<F>& shear,
+                      std::uint32_t first, std::uint32_t count, float t_min, float t_max,
+                      OnHit&& on_hit) {
   for (std::uint32_t i = first; i < first + count; ++i) {
     const PrimRef ref = acc.refs[i];
     const std::uint32_t k = prim_index(ref);
     float t, u = 0.0f, v = 0.0f;
     bool hit = false;
     if constexpr (has_feature<F, kTriangles> && has_feature<F, kSpheres>) {
-      hit = prim_tag(ref) == kTriangleTag ? intersect(acc.tris[k], ray, t_min, t_max, t, u, v)
-                                          : intersect(acc.spheres[k], ray, t_min, t_max, t);
+      hit = prim_tag(ref) == kTriangleTag
+                ? intersect_triangle<F>(acc.tris[k], ray, shear, t_min, t_max, t, u, v)
+                : intersect(acc.spheres[k], ray, t_min, t_max, t);
     } else if constexpr (has_feature<F, kTriangles>) {
-      hit = intersect(acc.tris[k], ray, t_min, t_max, t, u, v);
+      hit = intersect_triangle<F>(acc.tris[k], ray, shear, t_min, t_max, t, u, v);
     } else if constexpr (has_feature<F, kSpheres>) {
       hit = intersect(acc.spheres[k], ray, t_min, t_max, t);
     }
@@ -91,8 +111,9 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
   }
   if constexpr (has_feature<F, kTriangles> || has_feature<F, kSpheres>) {
     const RayPre pre(ray);
+    const ShearFor<F> shear(ray);
     traverse<false>(acc.bvh, pre, t_min, h.t, [&](std::uint32_t first, std::uint32_t count, float& t_max_) {
-      return test_leaf<F, true>(acc, ray, first, count, t_min, t_max_,
+      return test_leaf<F, true>(acc, ray, shear, first, count, t_min, t_max_,
                           [&](PrimRef ref, float t, float u, float v) {
                             t_max_ = t;
                             h.prim = ref;
@@ -134,9 +155,10 @@ inline float transmittance(const Accel& acc, const std::vector<Material>& materi
   }
   if constexpr (has_feature<F, kTriangles> || has_feature<F, kSpheres>) {
     const RayPre pre(ray);
+    const ShearFor<F> shear(ray);
     float t_far = t_max;
     traverse<true>(acc.bvh, pre, t_min, t_far, [&](std::uint32_t first, std::uint32_t count, float&) {
-      return test_leaf<F, false>(acc, ray, first, count, t_min, t_max,
+      return test_leaf<F, false>(acc, ray, shear, first, count, t_min, t_max,
                           [&](PrimRef ref, float t, float, float) {
                             if (crossing(acc.material_of(ref))) return true;
                             if constexpr (has_feature<F, kSpheres>) {

@@ -30,6 +30,9 @@ class Camera {
     return Ray(position_, normalize(forward_ + right_ * x + up_ * y));
   }
 
+  // Moves the camera by `offset` (its orientation is kept).
+  void translate(const vec4& offset) { position_ += offset; }
+
   const vec4& position() const { return position_; }
   const vec4& forward() const { return forward_; }
   const vec4& up() const { return up_; }

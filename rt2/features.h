@@ -17,9 +17,19 @@ enum Feature : unsigned {
   kSpheres = 1u << 3,
   kPlanes = 1u << 4,
   kTriangles = 1u << 5,
+  // Not a property of the scene but a render setting: triangles use the watertight test
+  // (geometry/triangle.h) instead of the thesis's fast one.
+  kWatertight = 1u << 6,
 };
+// Every content feature: the generic kernel (it keeps the kWatertight choice).
 inline constexpr unsigned kAllFeatures = 63;
-inline constexpr unsigned kFeatureCombinations = 64;
+inline constexpr unsigned kFeatureCombinations = 128;
+
+// The watertight test only matters when there are triangles; other combinations with the
+// bit forward to the kernel without it, so only 96 kernels are compiled.
+constexpr unsigned normalize_features(unsigned f) {
+  return (f & kTriangles) ? f : (f & ~unsigned(kWatertight));
+}
 
 template <unsigned F, unsigned Bit>
 inline constexpr bool has_feature = (F & Bit) != 0;

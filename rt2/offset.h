@@ -7,6 +7,11 @@
 // absolute amount near the origin where ulps vanish. The new ray then starts at t = 0.
 // The hit point itself must be computed precisely (barycentric interpolation for
 // triangles, re-projection for spheres and planes) for the offset to be sufficient.
+//
+// The paper's constants assume a scene of size ~1: below |p| = 1/32 it offsets by the
+// absolute 1/65536, which is 1.5 % of a millimetre-sized sphere. rt2 scales that region
+// and that offset with the scene's size (`scale`, Renderer::offset_scale()), so scenes from
+// millimetres to hundreds of kilometres get the same relative margin.
 #pragma once
 
 #include <bit>
@@ -17,16 +22,16 @@
 
 namespace rt2 {
 
-inline vec4 offset_ray_origin(const vec4& p, const vec4& n) {
-  constexpr float kOrigin = 1.0f / 32.0f;
-  constexpr float kFloatScale = 1.0f / 65536.0f;
+inline vec4 offset_ray_origin(const vec4& p, const vec4& n, float scale = 1.0f) {
+  const float origin = scale / 32.0f;
+  const float float_scale = scale / 65536.0f;
   constexpr float kIntScale = 256.0f;
   vec4 out;
   for (int i = 0; i < 3; ++i) {
     const auto of = static_cast<std::int32_t>(kIntScale * n[i]);
     const auto bits = std::bit_cast<std::int32_t>(p[i]);
     const float moved = std::bit_cast<float>(bits + (p[i] < 0.0f ? -of : of));
-    out[i] = std::fabs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
+    out[i] = std::fabs(p[i]) < origin ? p[i] + float_scale * n[i] : moved;
   }
   return out;
 }

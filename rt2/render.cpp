@@ -24,9 +24,11 @@ void RenderSettings::validate() const {
 
 namespace {
 
+// Entry i is the kernel for feature set i; sets that normalize_features maps elsewhere
+// share that set's kernel.
 template <std::size_t... I>
 constexpr std::array<Renderer::Kernel, sizeof...(I)> kernel_table(std::index_sequence<I...>) {
-  return {&render_rows_kernel<I>...};
+  return {&render_rows_kernel<normalize_features(I)>...};
 }
 
 constexpr auto kKernels = kernel_table(std::make_index_sequence<kFeatureCombinations>());
@@ -38,7 +40,10 @@ Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderSettings&
   settings_.validate();
   offsets_ = subpixel_offsets(settings_.subpixels, settings_.pattern);
   scene_features_ = scene.features();
-  kernel_features_ = settings_.generic_kernel ? kAllFeatures : scene_features_;
+  offset_scale_ = scene.size();
+  const unsigned mode = settings_.watertight ? unsigned(kWatertight) : 0u;
+  kernel_features_ =
+      normalize_features((settings_.generic_kernel ? kAllFeatures : scene_features_) | mode);
   kernel_ = kKernels[kernel_features_];
 }
 

@@ -26,21 +26,26 @@ struct RenderSettings {
   int depth = 1;                  // recursion depth: 0 = no reflection/refraction rays
   float min_weight = 0.01f;       // a secondary ray whose weight is <= this is not traced
   bool generic_kernel = false;    // true: the all-features kernel, decided per material
+  bool watertight = false;        // triangles: the watertight test instead of the fast one
 
   // Throws rt2::Error for width/height < 1 or > 65535, subpixels < 1 or > 65536,
   // depth < 0 or > 1'000'000, min_weight NaN or outside [0, 1].
   void validate() const;
 };
 
-// Rays traced, by kind (primary rays are one per subpixel).
+// Rays traced, by kind (primary rays are one per subpixel), and a safety count: pixels
+// whose colour came out NaN or infinite, which are written as 0 instead (never seen in a
+// test render; reported by rt2cpr when it happens).
 struct RayCounts {
   std::uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
+  std::uint64_t nonfinite_pixels = 0;
   std::uint64_t total() const { return primary + shadow + reflection + refraction; }
   RayCounts& operator+=(const RayCounts& o) {
     primary += o.primary;
     shadow += o.shadow;
     reflection += o.reflection;
     refraction += o.refraction;
+    nonfinite_pixels += o.nonfinite_pixels;
     return *this;
   }
 };
@@ -63,6 +68,8 @@ class Renderer {
   const std::vector<SubpixelOffset>& offsets() const { return offsets_; }
   // The features of the scene, and those the chosen kernel was compiled for.
   unsigned scene_features() const { return scene_features_; }
+  // The scene's size, for offsetting secondary-ray origins (offset.h).
+  float offset_scale() const { return offset_scale_; }
   unsigned kernel_features() const { return kernel_features_; }
 
   using Kernel = void (*)(const Renderer&, int, int, Image&, RayCounts&);
@@ -74,6 +81,7 @@ class Renderer {
   std::vector<SubpixelOffset> offsets_;
   unsigned scene_features_;
   unsigned kernel_features_;
+  float offset_scale_;
   Kernel kernel_;
 };
 

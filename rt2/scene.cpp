@@ -1,6 +1,7 @@
 // rt2/scene.cpp — scene bookkeeping, validation, features and extra lights.
 #include "rt2/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -34,6 +35,14 @@ Aabb Scene::bounds() const {
   }
   for (const Mesh& m : meshes) b.grow(m.bounds());
   return b;
+}
+
+float Scene::size() const {
+  const Aabb b = bounds();
+  if (b.is_empty()) return 1.0f;
+  const vec4 e = b.extent();
+  const float s = std::max(std::max(e[0], e[1]), e[2]);
+  return s > 0.0f && std::isfinite(s) ? s : 1.0f;
 }
 
 unsigned Scene::features(std::size_t light_count) const {
@@ -121,6 +130,17 @@ void Scene::validate() const {
   }
 }
 
+void recenter_on_camera(Scene& scene) {
+  const vec4 c = scene.camera.position();
+  scene.origin += c;
+  scene.camera.translate(-c);
+  for (Light& l : scene.lights) l.position -= c;
+  for (Sphere& s : scene.spheres) s.center -= c;
+  for (Plane& p : scene.planes) p.d += float(dot(p.n, c));
+  for (Mesh& m : scene.meshes)
+    for (vec4& v : m.positions) v -= c;
+}
+
 // Extra lights sit on a ring of radius 1.5 R around the scene's centre, at height
 // centre.y + R, where R is the bounding-sphere radius (1 for an empty scene). Light k of
 // the extra ones is at angle 2 pi k / extra + 0.3 (so the first is not on an axis), white,
@@ -150,9 +170,10 @@ void set_light_count(Scene& scene, std::size_t total) {
 }
 
 std::string feature_names(unsigned f) {
-  static const char* names[] = {"reflection", "refraction", "specular", "spheres", "planes", "triangles"};
+  static const char* names[] = {"reflection", "refraction", "specular", "spheres",
+                                "planes",     "triangles",  "watertight"};
   std::string s;
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 7; ++i) {
     if (!(f & (1u << i))) continue;
     if (!s.empty()) s += '+';
     s += names[i];

@@ -21,6 +21,10 @@ struct Scene {
   Camera camera;
   vec4 ambient{0.2f, 0.2f, 0.2f};      // I_amb, the ambient light
   vec4 background{0.0f, 0.0f, 0.0f};  // colour of rays that hit nothing
+  // Where this scene's coordinate origin is in the world: 0 as loaded, the camera's old
+  // position after recenter_on_camera. Procedural textures (the checker) use world
+  // coordinates, p + origin, so recentring does not move them.
+  vec4 origin{0.0f, 0.0f, 0.0f};
 
   std::vector<Material> materials;
   std::vector<std::string> material_names;  // parallel to materials
@@ -42,6 +46,9 @@ struct Scene {
   std::size_t triangle_count() const;
   // Bounds of the bounded geometry (spheres and meshes); empty if there is none.
   Aabb bounds() const;
+  // The scene's size for the ray-origin offset (offset.h): the largest extent of its
+  // bounded geometry, or 1 when it has none (planes only).
+  float size() const;
   // The feature bits this scene needs (see features.h), given how many lights are used.
   unsigned features(std::size_t light_count) const;
   unsigned features() const { return features(lights.size()); }
@@ -49,6 +56,15 @@ struct Scene {
   // indices out of range, radius <= 0, zero plane normals.
   void validate() const;
 };
+
+// Moves the whole scene by -camera position, so that the camera sits at the origin.
+// Rendering is invariant under translation, but float precision is not: a scene a
+// million units from the origin has an ulp of 0.0625 there, which swallows small objects
+// and the ray-origin offsets of secondary rays (offset.h). Near the camera, where the
+// pixels come from, camera-relative coordinates keep full precision; input coordinates
+// that are exact floats stay exact (the subtraction of two nearby floats is exact).
+// Planes keep their normal and move their offset: D' = D + N·c.
+void recenter_on_camera(Scene& scene);
 
 // Extra lights for `--lights N`: the scene's own lights first, then `total - existing`
 // lights placed deterministically on a ring above the scene's bounds (see scene.cpp).

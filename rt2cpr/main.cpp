@@ -37,6 +37,7 @@ int run(const Options& o) {
   rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
   if (o.lights >= 0) rt2::set_light_count(scene, static_cast<std::size_t>(o.lights));
   scene.validate();
+  rt2::recenter_on_camera(scene);  // full float precision where the pixels come from
   const double load_ms = ms_since(t0);
 
   const rt2::Accel accel = rt2::Accel::build(scene, o.bvh);

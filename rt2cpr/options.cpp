@@ -67,7 +67,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
       grain = o.schedule.grain;
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
-  std::string pattern = "grid", split = "sah", backend = "omp", kernel = "specialized";
+  std::string pattern = "grid", split = "sah", backend = "omp", kernel = "specialized",
+              triangle_test = "fast";
 
   app.add_option("--scene", o.scene, "scene file (.toml) or mesh (.obj); default: built-in scene");
   app.add_option("--preset", o.preset, "low | middle | hard | veryhard");
@@ -85,6 +86,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
   app.add_option("--grain", grain, "portions of work per thread (>= 1)");
   app.add_option("--kernel", kernel, "specialized (default) | generic");
+  app.add_option("--triangle-test", triangle_test,
+                 "fast (the thesis's, default) | watertight (Woop et al. 2013)");
   app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
   app.add_option("--output", o.output, "image file: .png .exr .ppm .jpg .tif .hdr");
   app.add_option("--stats", o.stats, "write parameters, times and ray counts as JSON");
@@ -119,6 +122,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
   if (kernel != "specialized" && kernel != "generic")
     throw rt2::Error("unknown kernel '" + kernel + "' (expected specialized or generic)");
   o.render.generic_kernel = kernel == "generic";
+  if (triangle_test != "fast" && triangle_test != "watertight")
+    throw rt2::Error("unknown triangle test '" + triangle_test + "' (expected fast or watertight)");
+  o.render.watertight = triangle_test == "watertight";
 
   if (split == "sah") o.bvh.split = rt2::Split::sah;
   else if (split == "midpoint") o.bvh.split = rt2::Split::midpoint;

@@ -78,6 +78,7 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"grain", o.schedule.grain},
       {"frames", o.frames},
       {"kernel", st.generic_kernel ? "generic" : "specialized"},
+      {"triangle_test", st.watertight ? "watertight" : "fast"},
       {"features", rt2::feature_names(renderer.scene_features())},
       {"kernel_features", rt2::feature_names(renderer.kernel_features())},
       {"triangles", accel.tris.size()},
@@ -150,6 +151,9 @@ void Report::print_summary() const {
               static_cast<unsigned long long>(rays_.shadow),
               static_cast<unsigned long long>(rays_.reflection),
               static_cast<unsigned long long>(rays_.refraction), j["mrays_per_s"].get<double>());
+  if (rays_.nonfinite_pixels > 0)
+    std::printf("warning: %llu pixels came out NaN or infinite and were written as black\n",
+                static_cast<unsigned long long>(rays_.nonfinite_pixels));
   if (j.contains("reference")) {
     const auto& r = j["reference"];
     std::printf("against reference: RMSE %.6f, PSNR %s dB, SSIM %.5f, edge RMSE %.6f over %zu "
@@ -175,6 +179,7 @@ nlohmann::json Report::json() const {
   j["rays_reflection"] = rays_.reflection;
   j["rays_refraction"] = rays_.refraction;
   j["rays_total"] = rays_.total();
+  j["nonfinite_pixels"] = rays_.nonfinite_pixels;
   j["mrays_per_s"] = med > 0 ? double(rays_.total()) / (med * 1e3) : 0.0;
   return j;
 }

@@ -13,6 +13,7 @@ namespace rt2 {
 
 // 32 bytes, two per cache line: bounds as two float triples, each followed by a 32-bit
 // field so that a 16-byte load reads bounds plus one field (the traverser masks it out).
+// The bounds are padded by 4 ulps of their coordinates (see build.cpp).
 struct BvhNode {
   float lo[3];
   std::uint32_t offset;  // leaf: first index into Bvh::order; inner: index of second child

@@ -57,7 +57,7 @@ inline void traverse(const Bvh& bvh, const RayPre& r, float t_min, float& t_max,
     for (;;) {  // the next pushed node that can still hold a closer hit
       if (sp == 0) return;
       const Entry e = stack[--sp];
-      if (e.t <= t_max) {
+      if (e.t <= t_max * kSlabPad) {  // padded like the slab test: no rounding culls a hit
         current = e.node;
         break;
       }

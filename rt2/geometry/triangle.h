@@ -1,11 +1,25 @@
-// rt2/geometry/triangle.h — ray/triangle intersection (thesis 3.5.3, formula 10).
+// rt2/geometry/triangle.h — ray/triangle intersection: the thesis's fast test (3.5.3,
+// formula 10) and the watertight test of Woop, Benthin and Wald (JCGT 2013).
 //
-// Precomputed per triangle: V0, E1 = V0 - V1, E2 = V2 - V0 and N = E2 x E1. Per ray:
-// T = V0 - P, S = T x Dir and [t, u, v] = [T·N, S·E2, S·E1] / (Dir·N); a hit when
-// u >= 0, v >= 0, u + v <= 1 and t is inside the ray's interval. The test is branch-free
-// up to the final answer, as in the thesis (which returned b*t + b - 1); a ray parallel
-// to the triangle divides by zero and every comparison fails, so it misses.
+// Stored per triangle: the three vertices exactly as given (a shared vertex has the same
+// bits in every triangle, which the watertight test needs) and the unnormalised normal
+// N = E2 x E1.
+//
+// Fast test (thesis formula 10): E1 = V0 - V1, E2 = V2 - V0, T = V0 - P, S = T x Dir,
+// [t, u, v] = [T·N, S·E2, S·E1] / (Dir·N); a hit when u >= 0, v >= 0, u + v <= 1 and t is
+// inside the ray's interval. Branch-free up to the answer; a ray parallel to the triangle
+// divides by zero and every comparison fails. Each triangle rounds its own edges, so a ray
+// through a shared edge or vertex can slip between two triangles.
+//
+// Watertight test: the ray is sheared so that it runs along +z through the origin (a
+// per-ray permutation and shear, WatertightRay); each triangle is projected into that 2D
+// frame and the three edge functions U, V, W are evaluated from the projected vertices.
+// An edge shared by two triangles yields the same products in both, so the signs agree
+// exactly and no ray passes between them; an edge function that is exactly zero is
+// recomputed in double precision, as the paper prescribes.
 #pragma once
+
+#include <cmath>
 
 #include "rt2/ray.h"
 
@@ -13,35 +27,80 @@ namespace rt2 {
 
 // 64 bytes: four vec4s, read together by the intersection.
 struct Triangle {
-  vec4 v0;
-  vec4 e1;  // V0 - V1
-  vec4 e2;  // V2 - V0
-  vec4 n;   // E2 x E1, not normalised (|n| = twice the area)
+  vec4 v0, v1, v2;
+  vec4 n;  // E2 x E1 = (V1 - V0) x (V2 - V0), not normalised (|n| = twice the area)
 
   static Triangle make(const vec4& a, const vec4& b, const vec4& c) {
-    Triangle t;
-    t.v0 = a;
-    t.e1 = a - b;
-    t.e2 = c - a;
-    t.n = cross(t.e2, t.e1);
-    return t;
+    return Triangle{a, b, c, cross(c - a, a - b)};
   }
-  vec4 vertex(int i) const { return i == 0 ? v0 : (i == 1 ? vec4(v0 - e1) : vec4(v0 + e2)); }
+  const vec4& vertex(int i) const { return i == 0 ? v0 : (i == 1 ? v1 : v2); }
+  // The point with barycentrics (u, v): (1 - u - v) V0 + u V1 + v V2.
+  vec4 point(float u, float v) const { return v0 + u * (v1 - v0) + v * (v2 - v0); }
 };
 static_assert(sizeof(Triangle) == 64);
 
-// The four dot products (T·N, S·E2, S·E1, Dir·N) are computed together by mlib::dot4 (a
-// transpose instead of four dpps).
+// The thesis's test. The four dot products (T·N, S·E2, S·E1, Dir·N) are computed together
+// by mlib::dot4 (a transpose instead of four dpps).
 inline bool intersect(const Triangle& tri, const Ray& r, float t_min, float t_max, float& t,
                       float& u, float& v) {
+  const vec4 e1 = tri.v0 - tri.v1;
+  const vec4 e2 = tri.v2 - tri.v0;
   const vec4 tv = tri.v0 - r.org;
   const vec4 s = cross(tv, r.dir);
-  const vec4 d = dot4(tv, tri.n, s, tri.e2, s, tri.e1, r.dir, tri.n);
+  const vec4 d = dot4(tv, tri.n, s, e2, s, e1, r.dir, tri.n);
   const vec4 tuv = d / d.w();
   t = tuv.x();
   u = tuv.y();
   v = tuv.z();
   return (t > t_min) & (t < t_max) & (u >= 0.0f) & (v >= 0.0f) & (u + v <= 1.0f);
+}
+
+// The per-ray part of the watertight test: the axis the ray is most aligned with becomes
+// z (kz), the other two x and y (swapped when the ray goes towards -z, to keep the
+// winding), and the shear that maps the ray onto +z.
+struct WatertightRay {
+  vec4 org;
+  int kx, ky, kz;
+  float sx, sy, sz;
+
+  explicit WatertightRay(const Ray& r) : org(r.org) {
+    const float ax = std::fabs(r.dir[0]), ay = std::fabs(r.dir[1]), az = std::fabs(r.dir[2]);
+    kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    kx = (kz + 1) % 3;
+    ky = (kx + 1) % 3;
+    if (r.dir[kz] < 0.0f) std::swap(kx, ky);
+    sx = r.dir[kx] / r.dir[kz];
+    sy = r.dir[ky] / r.dir[kz];
+    sz = 1.0f / r.dir[kz];
+  }
+};
+
+inline bool intersect_watertight(const Triangle& tri, const WatertightRay& r, float t_min,
+                                 float t_max, float& t, float& u, float& v) {
+  const vec4 a = tri.v0 - r.org, b = tri.v1 - r.org, c = tri.v2 - r.org;
+  // Vertices in the sheared 2D frame of the ray.
+  const float ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
+  const float bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
+  const float cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+  // Edge functions: U for edge V1V2 (the weight of V0), V for V2V0, W for V0V1.
+  float eu = cx * by - cy * bx;
+  float ev = ax * cy - ay * cx;
+  float ew = bx * ay - by * ax;
+  if (eu == 0.0f || ev == 0.0f || ew == 0.0f) {  // exactly on an edge: decide in double
+    eu = static_cast<float>(double(cx) * by - double(cy) * bx);
+    ev = static_cast<float>(double(ax) * cy - double(ay) * cx);
+    ew = static_cast<float>(double(bx) * ay - double(by) * ax);
+  }
+  if ((eu < 0.0f || ev < 0.0f || ew < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f))
+    return false;  // outside (both faces are hit: no back-face culling)
+  const float det = eu + ev + ew;
+  if (!(det != 0.0f)) return false;  // parallel, degenerate or NaN
+  const float az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
+  const float inv = 1.0f / det;
+  t = (eu * az + ev * bz + ew * cz) * inv;
+  u = ev * inv;
+  v = ew * inv;
+  return t > t_min && t < t_max;
 }
 
 }  // namespace rt2

@@ -112,7 +112,7 @@ TEST(Triangle, BarycentricsReproduceTheHitPoint) {
   float t, u, v;
   const Ray r = ray(org, target - org);
   ASSERT_TRUE(intersect(tri, r, 0.0f, kInfinity, t, u, v));
-  const vec4 p = tri.v0 - u * tri.e1 + v * tri.e2;
+  const vec4 p = tri.point(u, v);
   EXPECT_NEAR(calc_distance(p, target), 0.0f, 1e-5f);
   EXPECT_NEAR(calc_distance(r.at(t), target), 0.0f, 1e-5f);
   EXPECT_NEAR(u, 0.3f, 1e-6f);

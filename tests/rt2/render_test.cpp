@@ -36,6 +36,7 @@ Image render(const Scene& scene, const RenderSettings& st, const Schedule& sched
   const Renderer r(scene, acc, st);
   Image img;
   const FrameResult fr = render_frame(r, sched, img);
+  EXPECT_EQ(fr.rays.nonfinite_pixels, 0u);  // no NaN or infinity reaches a pixel
   if (rays) *rays = fr.rays;
   return img;
 }

@@ -49,6 +49,7 @@ Pixel render_pixel(const Scene& s, int depth = 4, float min_weight = 0.0f) {
   const Renderer r(s, acc, st);
   Image img;
   const FrameResult fr = render_frame(r, Schedule{Backend::serial, 1, 1}, img);
+  EXPECT_EQ(fr.rays.nonfinite_pixels, 0u);  // no NaN or infinity reaches a pixel
   return {vec4(img.rgb[0], img.rgb[1], img.rgb[2]), fr.rays};
 }
 

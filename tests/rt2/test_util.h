@@ -77,7 +77,7 @@ inline std::vector<Ray> random_rays(const Accel& acc, std::size_t n, unsigned se
       a = 1.0f - a;
       b = 1.0f - b;
     }
-    const vec4 target = t.v0 - a * t.e1 + b * t.e2;
+    const vec4 target = t.point(a, b);
     const vec4 d = target - org;
     if (float(dot(d, d)) < 1e-12f) continue;
     rays.emplace_back(org, normalize(d));
