@@ -37,14 +37,40 @@ float mtl_kr(const std::string& value, const MtlFacts& facts, const std::string&
 
 }  // namespace
 
+std::string_view newmtl_name(std::string_view line) {
+  if (!line.starts_with("newmtl ") && !line.starts_with("newmtl\t")) return {};
+  const std::string_view rest = line.substr(7);
+  const std::size_t first = rest.find_first_not_of(" \t");  // the line's end is trimmed
+  return first == std::string_view::npos ? std::string_view() : rest.substr(first);
+}
+
+std::string normalize_mtl(std::string_view text) {
+  std::string out;
+  out.reserve(text.size() + 1);
+  for_each_line(text, [&](std::size_t, std::string_view s) {
+    const std::string_view name = newmtl_name(s);
+    out += name.empty() ? s : "newmtl ";
+    out += name;
+    out += '\n';
+  });
+  return out;
+}
+
 void scan_mtl(const std::string& file, std::string_view text,
               std::map<std::string, MtlFacts>& facts) {
   MtlFacts* current = nullptr;
   for_each_line(text, [&](std::size_t line, std::string_view s) {
-    if (s.starts_with("newmtl ") || s.starts_with("newmtl\t")) {
-      current = &facts[std::string(s.substr(7))];  // the rest of the line, as tinyobjloader
+    if (s.starts_with('#')) return;
+    const std::string_view name = newmtl_name(s);
+    if (!name.empty()) {
+      current = &facts[std::string(name)];
       *current = MtlFacts{file};
-    } else if (current && (s.starts_with("Ni ") || s.starts_with("Ni\t"))) {
+      return;
+    }
+    // Values and texture options: tinyobjloader may read any of them as a number.
+    for (const std::string_view token : split_blanks(s))
+      if (huge_exponent(token)) fail_huge_exponent(file, line, token);
+    if (current && (s.starts_with("Ni ") || s.starts_with("Ni\t"))) {
       current->has_ni = true;
     } else if (current && (s.starts_with("Kr ") || s.starts_with("Kr\t"))) {
       current->kr_line = line;

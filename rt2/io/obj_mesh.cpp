@@ -115,6 +115,42 @@ void check_face(const std::string& file, std::size_t line, const std::vector<std
   }
 }
 
+// Numbers of the statements whose values tinyobjloader parses as reals (see huge_exponent).
+void check_reals(const std::string& file, std::size_t line,
+                 const std::vector<std::string_view>& t) {
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (huge_exponent(t[i])) fail_huge_exponent(file, line, t[i]);
+}
+
+// The number that atoi, as tinyobjloader uses it, reads at the start of `s` (0 if none),
+// saturated instead of overflowing.
+long long atoi_prefix(std::string_view s) {
+  std::size_t i = s.starts_with('+') || s.starts_with('-') ? 1 : 0;
+  long long n = 0;
+  for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i)
+    n = std::min(n * 10 + (s[i] - '0'), 1LL << 40);
+  return s.starts_with('-') ? -n : n;
+}
+
+// "t name ints/reals/strings values...": tinyobjloader allocates and parses as many values as
+// the counts say (up to 8192 each, even when the line has none), so a short line could cost
+// hundreds of kilobytes; the line must hold the values it declares.
+void check_tag(const std::string& file, std::size_t line, const std::vector<std::string_view>& t) {
+  long long declared = 0;
+  std::string_view counts = t.size() > 2 ? t[2] : std::string_view();
+  for (int k = 0; k < 3 && !counts.empty(); ++k) {
+    const std::size_t slash = std::min(counts.find('/'), counts.size());
+    declared += std::clamp(atoi_prefix(counts.substr(0, slash)), 0LL, 8192LL);
+    counts = slash < counts.size() ? counts.substr(slash + 1) : std::string_view();
+  }
+  const std::size_t present = t.size() > 3 ? t.size() - 3 : 0;
+  if (declared > static_cast<long long>(present))
+    error_at(file, line, 0,
+             "tag declares " + std::to_string(declared) + " values, but the line has " +
+                 std::to_string(present));
+  check_reals(file, line, t);
+}
+
 // Two passes: the totals of v, vt and vn first (a face may name a vertex defined after it,
 // as tinyobjloader allows), then every line.
 ObjScan scan_obj(const std::string& file, std::string_view text) {
@@ -132,11 +168,18 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
     const std::vector<std::string_view> t = split_blanks(s);
     if (t[0] == "v") {
       check_vertex(file, line, t);
+      check_reals(file, line, t);
       ++defined[0];
     } else if (t[0] == "vt") {
+      check_reals(file, line, t);
       ++defined[1];
     } else if (t[0] == "vn") {
+      check_reals(file, line, t);
       ++defined[2];
+    } else if (t[0] == "vw") {
+      check_reals(file, line, t);
+    } else if (t[0] == "t") {
+      check_tag(file, line, t);
     } else if (t[0] == "f") {
       check_face(file, line, t, defined, total);
       ++scan.faces;
@@ -210,16 +253,19 @@ std::string read_libraries(const std::string& obj_path, const ObjScan& scan, boo
     if (!seen.insert(name).second) continue;
     const std::string path = (folder / name).string();
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
+    const fs::file_type type = fs::status(path, ec).type();
+    if (type != fs::file_type::regular) {  // devices and pipes need not end: not read
       missing = true;
       if (!quiet)
-        warn(obj_path + ": material library '" + name + "' not found; using the default material");
+        warn(obj_path + ": material library '" + name + "' " +
+             (type == fs::file_type::not_found ? "not found" : "is not a regular file") +
+             "; using the default material");
       continue;
     }
-    std::string mtl = read_file(path, kMaxObjBytes, "");
+    const std::string file = read_file(path, kMaxObjBytes, "");
+    const std::string_view mtl = without_bom(file);
     scan_mtl(path, mtl, facts);
-    text += mtl;
-    text += '\n';
+    text += normalize_mtl(mtl);  // material names as scan_mtl reads them
   }
   return text;
 }
@@ -298,8 +344,13 @@ void warn_unknown_usemtl(const std::string& path, const ObjScan& scan,
 
 }  // namespace
 
-Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
+Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& scene,
                  int override_material) {
+  // Without a byte-order mark; copied only when there is one (the text may be large).
+  const std::string stripped = file_text.starts_with("\xEF\xBB\xBF")
+                                   ? std::string(without_bom(file_text))
+                                   : std::string();
+  const std::string& text = stripped.empty() ? file_text : stripped;
   if (override_material >= 0 &&
       static_cast<std::size_t>(override_material) >= scene.materials.size())
     throw Error(path + ": override material " + std::to_string(override_material) +
@@ -333,7 +384,8 @@ Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
   if (mesh.faces.empty()) {
     error_at(path, 0, 0,
              faces == 0 ? "no faces"
-                        : "all " + std::to_string(faces) + " faces are degenerate (zero area)");
+                        : "all " + std::to_string(faces) +
+                              " faces are degenerate (zero or non-finite area)");
   }
   return mesh;
 }

@@ -108,15 +108,28 @@ std::string read_file(const std::string& path, std::size_t max_bytes, const std:
   // Devices and pipes (/dev/zero) are refused: they need not end.
   if (st.type() != fs::file_type::regular) fail_read("is not a regular file");
 
+  // A regular file yields the size it reports. Those of /proc and /sys report 0 (or a
+  // guess) and yield more, some without end (/proc/self/pagemap is terabytes): the limit
+  // would stop them only after max_bytes of memory, so they are refused as soon as they
+  // pass the size they report.
+  const std::uintmax_t reported = fs::file_size(path, ec);
+  if (ec) fail_read("cannot access: " + ec.message());
+  const auto too_large = [&] {
+    fail_read("is larger than " + std::to_string(max_bytes >> 20) + " MiB");
+  };
+  if (reported > max_bytes) too_large();
   errno = 0;
   const std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
   if (!f) fail_read(std::string("cannot open: ") + std::strerror(errno));
   std::string text;
+  text.reserve(static_cast<std::size_t>(reported));
   char buf[1 << 16];
   std::size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) {
-    if (text.size() + n > max_bytes)
-      fail_read("is larger than " + std::to_string(max_bytes >> 20) + " MiB");
+    if (text.size() + n > max_bytes) too_large();
+    if (text.size() + n > reported)
+      fail_read("is not an ordinary file: it holds more than the " + std::to_string(reported) +
+                " bytes it reports (a /proc or /sys file, or one being written)");
     text.append(buf, n);
   }
   if (std::ferror(f.get())) fail_read(std::string("cannot read: ") + std::strerror(errno));
@@ -133,6 +146,10 @@ std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::
 
 // ---- lines and tokens -------------------------------------------------------------------
 
+std::string_view without_bom(std::string_view text) {
+  return text.starts_with("\xEF\xBB\xBF") ? text.substr(3) : text;
+}
+
 std::vector<std::string_view> split_blanks(std::string_view s) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
@@ -142,6 +159,25 @@ std::vector<std::string_view> split_blanks(std::string_view s) {
     i = end;
   }
   return out;
+}
+
+bool huge_exponent(std::string_view token) {
+  const std::size_t start = token.find_first_not_of("+-");
+  if (start > 1) return false;  // tinyobjloader reads one sign at most
+  std::size_t i = token.find_first_not_of("0123456789.", start);
+  if (i == std::string_view::npos || i == start || (token[i] != 'e' && token[i] != 'E'))
+    return false;
+  i = token.find_first_not_of("+-", i + 1);
+  i = token.find_first_not_of('0', i);  // leading zeros do not grow tinyobjloader's int
+  if (i == std::string_view::npos) return false;
+  const std::size_t end = std::min(token.find_first_not_of("0123456789", i), token.size());
+  return end - i >= 10;
+}
+
+[[noreturn]] void fail_huge_exponent(const std::string& file, std::size_t line,
+                                     std::string_view token) {
+  error_at(file, line, 0,
+           "number '" + std::string(token) + "' has an exponent of 10 digits or more");
 }
 
 bool parse_double(std::string_view token, double& v) {

@@ -69,7 +69,8 @@ void validate(const std::string& file, const Scene& scene);
 
 // ---- files ------------------------------------------------------------------------------
 
-// The whole of the regular file `path`. `context` is empty when the user named `path`
+// The whole of the regular file `path` (not a device, pipe or /proc file: those need not end),
+// at most `max_bytes`. `context` is empty when the user named `path`
 // directly (the message starts with it), or "scene.toml:7:8: meshes[0].file" when another
 // file names it (the message starts with that, and quotes the path).
 std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context);
@@ -96,8 +97,22 @@ void for_each_line(std::string_view text, Fn&& fn) {
   }
 }
 
+// `text` without a leading UTF-8 byte-order mark (Windows editors write one; tinyobjloader
+// would take it for part of the first line's keyword, and drop that line).
+std::string_view without_bom(std::string_view text);
+
 // The blank-separated (spaces, tabs) tokens of `s`.
 std::vector<std::string_view> split_blanks(std::string_view s);
+
+// Whether `token` is a number (as tinyobjloader reads one: sign, digits, '.', 'e') whose
+// exponent has 10 or more significant digits. tinyobjloader's tryParseDouble overflows an int
+// on some of those (1e2147483648: undefined behaviour); none is a sensible number, so the OBJ
+// and MTL scans refuse them all before tinyobjloader sees them.
+bool huge_exponent(std::string_view token);
+
+// Throws the error for a token that huge_exponent refuses, at `file`:`line`.
+[[noreturn]] void fail_huge_exponent(const std::string& file, std::size_t line,
+                                     std::string_view token);
 
 // The whole token as a number, or false.
 bool parse_double(std::string_view token, double& v);

@@ -1,11 +1,12 @@
 // rt2/io/toml_scene.cpp — TOML scene files into rt2::Scene (internal; see
 // rt2/io/toml_scene.h).
 //
-// The file is read and screened here (size, encoding, key depth), parsed by toml++, then
-// walked with Reader (rt2/io/toml_reader.h), which fetches typed, range-checked values and
-// reports unknown keys, so every message can name the file, the line and column and the key
-// path. The sections of the scene (camera, world, materials, lights, spheres, planes,
-// meshes) are read here; the OBJ files that [[meshes]] name go to rt2/io/obj_mesh.h.
+// The file is read and screened here (size, encoding, key depth, and invalid TOML that
+// toml++ 3.3 would mishandle: TomlScreen), parsed by toml++, then walked with Reader
+// (rt2/io/toml_reader.h), which fetches typed, range-checked values and reports unknown
+// keys, so every message can name the file, the line and column and the key path. The
+// sections of the scene (camera, world, materials, lights, spheres, planes, meshes) are read
+// here; the OBJ files that [[meshes]] name go to rt2/io/obj_mesh.h.
 #include "rt2/io/toml_scene.h"
 
 #include <toml++/toml.h>
@@ -33,7 +34,8 @@ namespace fs = std::filesystem;
 
 // Limits beyond which input is a mistake, not a scene.
 constexpr std::size_t kMaxSceneBytes = 64u << 20;  // a TOML scene file
-constexpr int kMaxKeyDepth = 256;                  // see check_key_depth
+constexpr int kMaxKeyDepth = 256;                  // see TomlScreen
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
 // ---- TOML screening -----------------------------------------------------------------------
 
@@ -53,102 +55,282 @@ void check_encoding(const std::string& file, std::string_view text) {
 }
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// "'x'" for a printable ASCII character, else "a line break", "byte 0xE9".
+std::string describe_char(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  if (c == '\n' || c == '\r') return "a line break";
+  if (u > ' ' && u < 0x7f) return "'" + std::string(1, c) + "'";
+  static const char* const kHex = "0123456789ABCDEF";
+  return std::string("byte 0x") + kHex[u >> 4] + kHex[u & 15];
+}
+
 bool is_bare_key_char(char c) {
   return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == '-' ||
          c == '+' || c == '.';
 }
 
-// toml++ limits nested arrays and inline tables (TOML_MAX_NESTED_VALUES = 256) but not
-// dotted keys or table headers: `a.a.a...a = 1` with ~30 000 parts overflows the stack
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+// What ends a TOML value (toml++'s is_value_terminator, in ASCII): whitespace, including the
+// line breaks and \v and \f, or ] } , #.
+bool is_value_end(char c) {
+  return c == ' ' || (c >= '\t' && c <= '\r') || c == ']' || c == '}' || c == ',' || c == '#';
+}
+
+// "YYYY-MM-DD" (digits and dashes only; toml++ checks the ranges).
+bool is_date(std::string_view d) {
+  if (d.size() != 10 || d[4] != '-' || d[7] != '-') return false;
+  for (const std::size_t k : {0, 1, 2, 3, 5, 6, 8, 9})
+    if (!is_digit(d[k])) return false;
+  return true;
+}
+
+[[noreturn]] void fail_at_byte(const std::string& file, std::string_view text, std::size_t i,
+                               const std::string& msg) {
+  const auto [line, column] = line_and_column(text, i);
+  error_at(file, line, column, msg);
+}
+
+// toml++ 3.3 requires (TOML_ASSERT_ASSUME in parser::parse_key) that the key of a table
+// header starts with a key character, but parse_table_header does not check it: `[,]`,
+// `[[[a]]]` or `[\n` abort a debug build of toml++ and are undefined behaviour in a release
+// one (fixed upstream after 3.3, tomlplusplus pull request #301). So the header that starts
+// at text[open] (a '[') is checked here as toml++ reads it: '[', blanks, an optional second
+// '[' (only right after the first; toml++ reports "[ [" itself) and blanks, then a bare key
+// character, a quote, or the ']' that toml++ reports as an empty key.
+void check_header_start(const std::string& file, std::string_view text, std::size_t open) {
+  std::size_t i = open + 1;
+  while (i < text.size() && is_blank(text[i])) ++i;
+  if (i < text.size() && text[i] == '[') {
+    if (i > open + 1) return;
+    ++i;
+    while (i < text.size() && is_blank(text[i])) ++i;
+  }
+  if (i >= text.size()) return;  // toml++ reports the end of the file
+  const char c = text[i];
+  if (c == ']' || c == '"' || c == '\'' || (is_bare_key_char(c) && c != '.' && c != '+')) return;
+  fail_at_byte(file, text, i,
+               "invalid TOML: a table header must start with a key (a letter, digit, '_', '-' "
+               "or a quote), not " + describe_char(c));
+}
+
+// In a multi-line basic string, toml++ 3.3 tests what follows a backslash with is_whitespace
+// (is it a line-ending backslash?), and then skips blanks and line breaks with
+// is_horizontal_whitespace: for a non-ASCII character either reaches TOML_UNREACHABLE
+// (undefined behaviour; see TomlScreen::check_ascii). So the backslash at text[slash] must
+// not be followed, after blanks and line breaks, by a non-ASCII character.
+void check_line_ending_escape(const std::string& file, std::string_view text, std::size_t slash) {
+  const std::size_t i = text.find_first_not_of(" \t\r\n", slash + 1);
+  if (i == std::string_view::npos || static_cast<unsigned char>(text[i]) < 0x80) return;
+  fail_at_byte(file, text, i,
+               "invalid TOML: a backslash in a multi-line string followed by a non-ASCII "
+               "character, which toml++ cannot read; write it as an escape such as \\u00E9");
+}
+
+// A lexical pass over a TOML text before toml++ parses it, for what toml++ 3.3 handles badly.
+//
+// Key depth. toml++ limits nested arrays and inline tables (TOML_MAX_NESTED_VALUES = 256) but
+// not dotted keys or table headers: `a.a.a...a = 1` with ~30 000 parts overflows the stack
 // inside the parser, which recurses over the finished tree. So the key depth is estimated
-// lexically before parsing and anything deeper than kMaxKeyDepth is refused. The estimate
-// counts the dots of keys outside strings and comments: those of the current table header,
-// plus those of the current key in each open array or inline table. The first dot of a
-// token between two digits is taken for a decimal point (1.5), so a key made of digits
-// (1.2.3) still counts from its second dot: the estimate is at least half the true key
-// depth, which is therefore bounded by about 2 * kMaxKeyDepth, far from the overflow.
-void check_key_depth(const std::string& file, std::string_view text) {
-  enum class State { normal, comment, basic, literal, ml_basic, ml_literal };
-  State state = State::normal;
-  std::vector<int> frames{0};  // key dots per open bracket; frames[0] is the statement
-  int open_dots = 0;           // the sum of frames
-  int header_dots = 0;
-  bool in_header = false, line_start = true;
-  int token_dots = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\n') {
-      if (state == State::comment || state == State::basic || state == State::literal)
-        state = State::normal;  // a single-line string cannot go on; toml++ reports it
-      if (state == State::normal && frames.size() == 1) {
-        open_dots = frames[0] = 0;
-        in_header = false;
-        line_start = true;
-      }
-      token_dots = 0;
-      continue;
+// and anything deeper than kMaxKeyDepth is refused. The estimate counts the dots of keys
+// outside strings and comments: those of the current table header, plus those of the
+// current key in each open array or inline table. The first dot of a token between two
+// digits is taken for a decimal point (1.5), so a key made of digits (1.2.3) still counts
+// from its second dot: the estimate is at least half the true key depth, which is therefore
+// bounded by about 2 * kMaxKeyDepth, far from the overflow.
+//
+// Inputs that break toml++'s own assertions (abort in a debug build of toml++, undefined
+// behaviour in a release one), all found by fuzzing (scripts/fuzz) and all invalid TOML: a
+// table header not starting with a key (check_header_start), a '}' where an array expects a
+// value (check_closer), a date with a broken time after it (check_date_time), non-ASCII
+// outside strings and comments (check_ascii) and after a backslash in a multi-line string
+// (check_line_ending_escape). Quotes start strings only where toml++ reads them so
+// (opens_string, scanned_value).
+class TomlScreen {
+ public:
+  TomlScreen(const std::string& file, std::string_view text) : file_(file), text_(text) {}
+
+  void run() {
+    // toml++ skips a UTF-8 byte-order mark; it is the only non-ASCII allowed outside strings.
+    for (i_ = text_.starts_with(kUtf8Bom) ? kUtf8Bom.size() : 0; i_ < text_.size(); ++i_) {
+      const char c = text_[i_];
+      if (c == '\n')
+        newline();
+      else if (state_ != State::normal)
+        in_comment_or_string(c);
+      else
+        normal(c);
     }
-    switch (state) {
-      case State::comment:
-        continue;
-      case State::basic:
-      case State::ml_basic:
-        if (c == '\\') {
-          ++i;
-        } else if (state == State::basic ? c == '"' : text.substr(i, 3) == "\"\"\"") {
-          i += state == State::basic ? 0 : 2;
-          state = State::normal;
-        }
-        continue;
-      case State::literal:
-      case State::ml_literal:
-        if (state == State::literal ? c == '\'' : text.substr(i, 3) == "'''") {
-          i += state == State::literal ? 0 : 2;
-          state = State::normal;
-        }
-        continue;
-      case State::normal:
-        break;
+  }
+
+ private:
+  enum class State { normal, comment, basic, literal, ml_basic, ml_literal };
+
+  void newline() {
+    if (state_ == State::comment || state_ == State::basic || state_ == State::literal)
+      state_ = State::normal;  // a single-line string cannot go on; toml++ reports it
+    if (state_ == State::normal && frames_.size() == 1) {
+      open_dots_ = frames_[0] = 0;
+      in_header_ = false;
+      line_start_ = true;
+    }
+    token_dots_ = 0;
+  }
+
+  void in_comment_or_string(char c) {
+    if (state_ == State::basic || state_ == State::ml_basic) {
+      if (c == '\\') {
+        if (state_ == State::ml_basic) check_line_ending_escape(file_, text_, i_);
+        ++i_;
+      } else if (state_ == State::basic ? c == '"' : text_.substr(i_, 3) == "\"\"\"") {
+        i_ += state_ == State::basic ? 0 : 2;
+        state_ = State::normal;
+      }
+    } else if (state_ == State::literal || state_ == State::ml_literal) {
+      if (state_ == State::literal ? c == '\'' : text_.substr(i_, 3) == "'''") {
+        i_ += state_ == State::literal ? 0 : 2;
+        state_ = State::normal;
+      }
+    }
+  }
+
+  void normal(char c) {
+    check_ascii(c);
+    if ((is_digit(c) || c == '+' || c == '-') && at_value_start()) {
+      scanned_value();
+      return;
     }
     if (c == '#') {
-      state = State::comment;
-    } else if (c == '"' || c == '\'') {
-      const bool multi = text.substr(i, 3) == std::string(3, c);
-      state = c == '"' ? (multi ? State::ml_basic : State::basic)
-                       : (multi ? State::ml_literal : State::literal);
-      i += multi ? 2 : 0;
-    } else if (c == '[' && line_start && frames.size() == 1) {
-      in_header = true;
-      header_dots = 0;
-    } else if ((c == '[' || c == '{') && !in_header) {
-      frames.push_back(0);
-    } else if ((c == ']' || c == '}') && !in_header && frames.size() > 1) {
-      open_dots -= frames.back();
-      frames.pop_back();
-    } else if (c == ',' && !in_header) {
-      open_dots -= frames.back();
-      frames.back() = 0;
+      state_ = State::comment;
+    } else if ((c == '"' || c == '\'') && opens_string()) {
+      const bool multi = text_.substr(i_, 3) == std::string(3, c);
+      state_ = c == '"' ? (multi ? State::ml_basic : State::basic)
+                        : (multi ? State::ml_literal : State::literal);
+      i_ += multi ? 2 : 0;
+    } else if (c == '[' && line_start_ && frames_.size() == 1) {
+      check_header_start(file_, text_, i_);
+      in_header_ = true;
+      header_dots_ = 0;
+    } else if ((c == '[' || c == '{') && !in_header_) {
+      frames_.push_back(0);
+      openers_.push_back(c);
+    } else if ((c == ']' || c == '}') && !in_header_ && frames_.size() > 1) {
+      check_closer(c);
+      open_dots_ -= frames_.back();
+      frames_.pop_back();
+      openers_.pop_back();
+    } else if (c == ',' && !in_header_) {
+      open_dots_ -= frames_.back();
+      frames_.back() = 0;
     } else if (c == '.') {
-      const bool decimal_point = token_dots == 0 && i > 0 && is_digit(text[i - 1]) &&
-                                 i + 1 < text.size() && is_digit(text[i + 1]);
-      if (!decimal_point) {
-        if (in_header) {
-          ++header_dots;
-        } else {
-          ++frames.back();
-          ++open_dots;
-        }
-      }
-      if (header_dots + open_dots > kMaxKeyDepth) {
-        const auto [line, column] = line_and_column(text, i);
-        error_at(file, line, column,
-                 "keys are nested more than " + std::to_string(kMaxKeyDepth) + " levels deep");
+      dot();
+    }
+    token_dots_ = is_bare_key_char(c) ? token_dots_ + (c == '.') : 0;
+    if (!is_blank(c)) {
+      line_start_ = false;
+      last_ = c;
+    }
+  }
+
+  // Where a value starts: after '=', or after '[' or ',' in an array.
+  bool at_value_start() const {
+    return last_ == '=' || ((last_ == '[' || last_ == ',') && !in_header_ && !openers_.empty() &&
+                            openers_.back() == '[');
+  }
+
+  // A value that starts with a digit or a sign (a number, date or time): toml++ 3.3 scans it
+  // to the first value terminator as one token, quotes and brackets included (`x = 0."""é`
+  // is one token, not a number and a string), testing each character with
+  // is_value_terminator: so no character of it may be non-ASCII (check_ascii). The token is
+  // skipped here, so its dots are not keys and its quotes open no string. Valid values
+  // contain neither, so only invalid TOML, which toml++ refuses, is read differently.
+  void scanned_value() {
+    std::size_t end = i_;
+    while (end < text_.size() && !is_value_end(text_[end])) ++end;
+    check_date_time(end);
+    for (; i_ < end; ++i_) check_ascii(text_[i_]);
+    --i_;  // run() steps past the token's last character
+    last_ = text_[i_];
+    line_start_ = false;
+    token_dots_ = 0;
+  }
+
+  // Two values on which toml++ 3.3 breaks its own assertions: "YYYY-MM-DD" then 'T' (or 't')
+  // and no digit (`x = 1979-05-27T:`: parse_date_time calls parse_time, which asserts a
+  // digit), and a token, a space, one digit and the value's end (`x = [1979-05-27 1]`: the
+  // value scanner, looking for a date-time written with a space, asserts that more follows
+  // the digit; it does so for any token of 10 characters with '-' at 4 and 7, so every such
+  // value is refused: none is valid TOML). `end` is where the value's first token ends.
+  void check_date_time(std::size_t end) const {
+    const std::size_t t = i_ + 10;  // after a date
+    if (is_date(text_.substr(i_, 10)) && t + 1 < text_.size() &&
+        (text_[t] == 'T' || text_[t] == 't') && !is_digit(text_[t + 1]))
+      fail_at_byte(file_, text_, t + 1,
+                   "invalid TOML: a date-time needs a time (HH:MM) after '" +
+                       std::string(1, text_[t]) + "', not " + describe_char(text_[t + 1]));
+    if (end + 2 < text_.size() && text_[end] == ' ' && is_digit(text_[end + 1]) &&
+        is_value_end(text_[end + 2]))
+      fail_at_byte(file_, text_, end + 2,
+                   "invalid TOML: a value followed by a space and one digit (a date-time "
+                   "needs a time HH:MM after the space)");
+  }
+
+  // Whether the quote at text_[i_] starts a string for toml++: only where a key or a value
+  // can start. After a token (`x = 1"abc"`, `x = true"é"`) toml++ reads the quote as part of
+  // the value, or as an error, not as a string.
+  bool opens_string() const {
+    const char before = i_ == 0 ? '\n' : text_[i_ - 1];
+    return is_blank(before) || before == '\n' || before == '\r' || before == '=' ||
+           before == '[' || before == '{' || before == ',' || before == '.' ||
+           (i_ == kUtf8Bom.size() && text_.starts_with(kUtf8Bom));
+  }
+
+  // TOML allows non-ASCII only in strings and comments, and toml++ 3.3 must not see it
+  // elsewhere: its is_non_ascii_horizontal_whitespace reaches TOML_UNREACHABLE (undefined
+  // behaviour) for most of U+00A1..U+0499, U+2C3E..U+3037 and U+FB06..U+FEFE.
+  void check_ascii(char c) const {
+    if (static_cast<unsigned char>(c) < 0x80) return;
+    fail_at_byte(file_, text_, i_,
+                 "invalid TOML: " + describe_char(c) +
+                     " outside a string or comment (only ASCII is allowed there)");
+  }
+
+  // toml++ 3.3's parse_array hands a '}' to parse_value, which asserts that it is not a
+  // value terminator: `x = [1, }` must be refused here.
+  void check_closer(char c) const {
+    if (c != '}' || openers_.back() != '[') return;
+    fail_at_byte(file_, text_, i_, "invalid TOML: '}' inside an array (expected a value or ']')");
+  }
+
+  void dot() {
+    const bool decimal_point = token_dots_ == 0 && i_ > 0 && is_digit(text_[i_ - 1]) &&
+                               i_ + 1 < text_.size() && is_digit(text_[i_ + 1]);
+    if (!decimal_point) {
+      if (in_header_) {
+        ++header_dots_;
+      } else {
+        ++frames_.back();
+        ++open_dots_;
       }
     }
-    token_dots = is_bare_key_char(c) ? token_dots + (c == '.') : 0;
-    if (c != ' ' && c != '\t') line_start = false;
+    if (header_dots_ + open_dots_ > kMaxKeyDepth)
+      fail_at_byte(file_, text_, i_,
+                   "keys are nested more than " + std::to_string(kMaxKeyDepth) + " levels deep");
   }
-}
+
+  const std::string& file_;
+  std::string_view text_;
+  std::size_t i_ = 0;
+  State state_ = State::normal;
+  std::vector<int> frames_{0};  // key dots per open bracket; frames_[0] is the statement
+  std::vector<char> openers_;   // the open brackets, '[' or '{', of frames_[1...]
+  int open_dots_ = 0;           // the sum of frames_
+  int header_dots_ = 0;
+  bool in_header_ = false, line_start_ = true;
+  int token_dots_ = 0;
+  char last_ = '\n';  // the last character outside strings and comments that is not a blank
+};
 
 toml::table parse_toml(const std::string& file, const std::string& text) {
   try {
@@ -359,7 +541,7 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
 Scene read_toml_scene(const std::string& path) {
   const std::string text = read_file(path, kMaxSceneBytes, "");
   check_encoding(path, text);
-  check_key_depth(path, text);
+  TomlScreen(path, text).run();
   const toml::table doc = parse_toml(path, text);
   const Reader root(path, doc, "",
                     {"camera", "world", "materials", "lights", "spheres", "planes", "meshes"});

@@ -12,7 +12,8 @@
 
 namespace rt2::io {
 
-// Reads the TOML scene file `path`: screened (size, encoding, key depth), parsed by toml++,
+// Reads the TOML scene file `path`: screened (size, encoding, key depth, and the invalid
+// TOML that toml++ 3.3 mishandles: see TomlScreen in toml_scene.cpp), parsed by toml++,
 // walked section by section with Reader; the meshes it names are loaded relative to its
 // folder (rt2/io/obj_mesh.h), and the result has passed Scene::validate(). Throws
 // rt2::Error naming the file, line and column and key path of the problem.

@@ -1,0 +1,437 @@
+#!/usr/bin/env python3
+"""tests/hostile/generate.py — writes the hostile loader inputs of tests/hostile/.
+
+Each case is a scene or mesh (and the OBJ/MTL files it names, <case>.obj, <case>.mtl) plus
+<case>.expect, the outcome tests/rt2/hostile_test.cpp checks (format in README.md). The cases
+are made here rather than by hand because many are binary, huge or repetitive (UTF-16, NUL
+bytes, 5000-deep nesting, 100 000 spheres, 1 MB lines); the files are committed, so the test
+needs no Python. Run it from anywhere after changing a case: it rewrites every case file
+(and removes none; delete a dropped case's files by hand).
+"""
+import math
+import os
+import random
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# Three lines, so that what follows starts at line 4.
+CAMERA = "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 0, 0]\n"
+# Lines 4-5: a material "red".
+RED = "[materials.red]\ndiffuse = [1, 0, 0]\n"
+TRIANGLE = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+
+
+def sphere(radius="1", material='"red"', center="[0, 0, 0]"):
+    return f"[[spheres]]\ncenter = {center}\nradius = {radius}\nmaterial = {material}\n"
+
+
+def mesh(name, extra=""):
+    return f'[[meshes]]\nfile = "{name}"\n{extra}'
+
+
+def write(name, data):
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    with open(os.path.join(HERE, name), "wb") as f:
+        f.write(data)
+
+
+def case(name, expect, **files):
+    """files: ext=content ("toml", "obj", "mtl"); expect: the .expect lines."""
+    for ext, content in files.items():
+        write(f"{name}.{ext}", content)
+    write(f"{name}.expect", expect.strip() + "\n")
+
+
+def error(name, load_ext, message, line=None, file=None, **files):
+    e = f"load: {name}.{load_ext}\nerror: {message}\n"
+    if line is not None:
+        e += f"line: {line}\n"
+    if file is not None:
+        e += f"file: {file}\n"
+    case(name, e, **files)
+
+
+def scene_error(name, toml, message, line=None, **files):
+    error(name, "toml", message, line, toml=toml, **files)
+
+
+def obj_error(name, obj, message, line=None, **files):
+    """A bare OBJ (framed) whose loading fails."""
+    error(name, "obj", message, line, obj=obj, **files)
+
+
+def ok(name, load_ext, checks="", **files):
+    case(name, f"load: {name}.{load_ext}\nok: true\n{checks}", **files)
+
+
+# ---- malformed TOML -------------------------------------------------------------------------
+
+def malformed_toml():
+    scene_error("toml_unclosed_array", CAMERA + "fov = [50, 60\n", "invalid TOML", 4)
+    scene_error("toml_missing_value", CAMERA + "fov =\n", "invalid TOML", 4)
+    scene_error("toml_unclosed_header", "[camera\nposition = [0, 1, 5]\n", "invalid TOML", 1)
+    scene_error("toml_key_without_value", CAMERA + "fov 50\n", "invalid TOML", 4)
+    scene_error("toml_bad_escape", CAMERA + RED + sphere(material='"r\\qd"'), "invalid TOML", 9)
+    scene_error("toml_bad_number", CAMERA + "fov = 5__0\n", "invalid TOML", 4)
+    scene_error("toml_dangling_comma_inline",
+                CAMERA + RED +
+                "spheres = [{center = [0, 0, 0], radius = 1, material = \"red\",}]\n",
+                "invalid TOML", 6)
+    scene_error("toml_table_defined_twice", CAMERA + "[camera]\nfov = 50\n", "invalid TOML", 4)
+    scene_error("toml_duplicate_key", CAMERA + "fov = 50\nfov = 60\n", "invalid TOML", 5)
+    # toml++ 3.3 asserts on these table headers (found by fuzzing; see check_header_start).
+    scene_error("toml_header_starts_with_comma", CAMERA + "[,materials.red]\n",
+                "a table header must start with a key", 4)
+    scene_error("toml_header_triple_bracket", CAMERA + "[[[a]]]\n",
+                "a table header must start with a key", 4)
+    scene_error("toml_header_then_newline", CAMERA + "[\n",
+                "a table header must start with a key", 4)
+    # toml++ 3.3 reaches TOML_UNREACHABLE on most non-ASCII characters where it expects
+    # whitespace (found by fuzzing; see screen_toml).
+    scene_error("toml_non_ascii_after_number", CAMERA + "fov = 50\u02e2\n",
+                "outside a string or comment", 4)
+    scene_error("toml_non_ascii_bare_key", CAMERA + "caméra = 1\n",
+                "outside a string or comment", 4)
+    scene_error("toml_non_ascii_after_line_ending_backslash",
+                CAMERA + RED + sphere(material='"""\\\n  \u00e9"""'),
+                "backslash in a multi-line string", 10)
+
+
+def fuzz_found():
+    """Inputs that crashed the fuzz targets (scripts/fuzz), minimised. All broke toml++ 3.3's
+    own assertions (undefined behaviour in a release build); rt2 now refuses them before
+    toml++ parses (TomlScreen in rt2/io/toml_scene.cpp). The first four are libFuzzer's
+    -minimize_crash output (scripts/fuzz --target tomlpp --minimize); minimising the others
+    that way ends at one of the first four, so they are minimised by hand."""
+    scene_error("fuzz_header_bracket_equals", "[=", "a table header must start with a key", 1)
+    scene_error("fuzz_header_bracket_newline", "[\n", "a table header must start with a key", 1)
+    scene_error("fuzz_header_bracket_control", "[\x01", "a table header must start with a key", 1)
+    scene_error("fuzz_non_ascii_alone", "\u02e2", "outside a string or comment", 1)
+    scene_error("fuzz_close_brace_in_array", "x = [}", "'}' inside an array", 1)
+    scene_error("fuzz_date_time_without_time", "x = 1979-05-27T:", "a date-time needs a time", 1)
+    scene_error("fuzz_date_space_one_digit", "x = [1979-05-27 1]",
+                "a value followed by a space and one digit", 1)
+    scene_error("fuzz_date_like_space_one_digit", "x = [0, 1179-40-2[ 7, 1]",
+                "a value followed by a space and one digit", 1)
+    # tinyobjloader's tryParseDouble overflows an int on this exponent (found in an MTL).
+    error("fuzz_mtl_exponent_overflow", "obj", "'0e-2147483648' has an exponent of 10 digits",
+          2, file="fuzz_mtl_exponent_overflow.mtl",
+          obj="mtllib fuzz_mtl_exponent_overflow.mtl\nusemtl red\n" + TRIANGLE,
+          mtl="newmtl red\nKa 0.6 0.12 0e-2147483648\n")
+    scene_error("fuzz_quotes_inside_a_number", "x = [ 0.\"\"\"m!\ufefa",
+                "outside a string or comment", 1)
+    scene_error("fuzz_quote_after_number", "x = 1'''\u00e9'''", "outside a string or comment", 1)
+
+
+def truncated():
+    glass = open(os.path.join(HERE, "..", "..", "scenes", "glass.toml"), encoding="utf-8").read()
+    cut = glass.index("look_at") + len("look_at = [0, 0.")
+    scene_error("truncated_toml_mid_number", glass[:cut], "invalid TOML")
+    cut = glass.index('material = "') + len('material = "gl')
+    scene_error("truncated_toml_mid_string", glass[:cut], "invalid TOML")
+    cut = glass.index("[materials.") + len("[materi")
+    scene_error("truncated_toml_mid_header", glass[:cut], "invalid TOML")
+    obj = TRIANGLE + "v 1 1 0\nf 2 4 3\n"
+    obj_error("truncated_obj_mid_face", obj[:-3], "face has 2 vertices; at least 3 are needed", 6)
+    obj_error("truncated_obj_mid_vertex", "v 0 0 0\nv 1 0 0\nv 0 1",
+              "vertex needs 3 coordinates", 3)
+    obj_error("truncated_obj_mid_corner", TRIANGLE[:-2] + "/", "face corner '/' is not an index", 4)
+
+
+# ---- encodings and garbage ----------------------------------------------------------------
+
+def encodings():
+    rng = random.Random(2)
+    garbage = bytes(rng.randrange(256) for _ in range(4096))
+    scene_error("binary_garbage", garbage, "NUL byte")
+    no_nul = bytes(rng.randrange(1, 256) for _ in range(4096))
+    scene_error("binary_garbage_without_nul", no_nul, "invalid TOML")
+    obj_error("binary_garbage_obj", garbage, "")  # whatever the first bad line is: one line
+    scene_error("empty", b"", "file is empty")
+    obj_error("empty_obj", b"", "no faces")
+    scene_error("only_comments_and_whitespace", "\n   \n# a comment\n\t\n# another\n\n",
+                "missing required table [camera]")
+    scene_text = CAMERA + RED + sphere()
+    utf16 = scene_text.encode("utf-16-le")
+    scene_error("utf16_le_with_bom", b"\xff\xfe" + utf16, "UTF-16")
+    scene_error("utf16_be_with_bom", b"\xfe\xff" + scene_text.encode("utf-16-be"), "UTF-16")
+    scene_error("utf16_le_without_bom", utf16, "NUL byte", 1)
+    scene_error("invalid_utf8_in_string", (CAMERA + RED + sphere(material='"rXd"')).encode()
+                .replace(b"X", b"\xc3\x28"), "invalid TOML", 9)
+    scene_error("invalid_utf8_in_comment", CAMERA.encode() + b"# caf\xff\n", "invalid TOML", 4)
+    scene_error("nul_in_string", (CAMERA + RED + sphere(material='"re\0d"')).encode(),
+                "NUL byte", 9)
+    # A UTF-8 byte-order mark is skipped, in TOML (toml++) and in OBJ and MTL (rt2).
+    ok("utf8_bom", "toml", "quiet: true\nspheres: 1\n",
+       toml=b"\xef\xbb\xbf" + (CAMERA + RED + sphere()).encode())
+    ok("utf8_bom_obj", "obj", "quiet: true\nfaces: 1\nmaterial: utf8_bom_obj.obj:red\n",
+       obj=b"\xef\xbb\xbfmtllib utf8_bom_obj.mtl\n" + ("usemtl red\n" + TRIANGLE).encode(),
+       mtl=b"\xef\xbb\xbfnewmtl red\nKd 1 0 0\n")
+    crlf = (CAMERA + RED + sphere() + mesh("crlf.obj")).replace("\n", "\r\n")
+    ok("crlf", "toml", "quiet: true\nspheres: 1\nfaces: 2\nmaterial: crlf.obj:blue\n", toml=crlf,
+       obj=("mtllib crlf.mtl\nusemtl blue\n" + TRIANGLE + "v 1 1 0\nf 2 4 3\n").replace(
+           "\n", "\r\n"),
+       mtl="newmtl blue\r\nKd 0 0 1\r\n")
+
+
+# ---- depth --------------------------------------------------------------------------------
+
+def depth():
+    n = 5000
+    scene_error("deep_arrays", CAMERA + "x = " + "[" * n + "]" * n + "\n", "nested", 4)
+    scene_error("deep_inline_tables", CAMERA + "x = " + "{a = " * n + "1" + "}" * n + "\n",
+                "nested", 4)
+    scene_error("deep_arrays_of_inline_tables",
+                CAMERA + "x = " + "[{a = " * n + "1" + "}]" * n + "\n",
+                "nested", 4)
+    scene_error("deep_dotted_keys", CAMERA + "a" + ".a" * n + " = 1\n", "nested", 4)
+    scene_error("deep_table_header", CAMERA + "[a" + ".a" * n + "]\n", "nested", 4)
+    scene_error("deep_quoted_dotted_keys", CAMERA + '"a"' + '."a"' * n + " = 1\n", "nested", 4)
+    scene_error("deep_unclosed_arrays", CAMERA + "x = " + "[" * n + "\n", "", 4)
+
+
+# ---- OBJ faces and vertices ---------------------------------------------------------------
+
+def obj_faces():
+    v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+    obj_error("obj_index_past_end", v3 + "f 1 2 4\n",
+              "face references vertex 4, but only 3 vertices are defined", 4)
+    obj_error("obj_index_huge", v3 + "f 1 2 2147483648\n", "face references vertex 2147483648", 4)
+    obj_error("obj_index_overflows_64_bits", v3 + "f 1 2 99999999999999999999999\n",
+              "is not an index", 4)
+    obj_error("obj_index_zero", v3 + "f 0 1 2\n", "OBJ indices start at 1", 4)
+    obj_error("obj_index_negative_too_far", v3 + "f -1 -2 -4\n", "(relative), but only 3", 4)
+    obj_error("obj_index_most_negative", v3 + "f -1 -2 -9223372036854775808\n", "(relative)", 4)
+    obj_error("obj_normal_index_past_end", v3 + "vn 0 0 1\nf 1//1 2//1 3//2\n",
+              "face references normal 2, but only 1 normal is defined", 5)
+    obj_error("obj_texcoord_index_zero", v3 + "vt 0 0\nf 1/0 2/1 3/1\n",
+              "face references texture coordinate 0", 5)
+    obj_error("obj_corner_four_parts", v3 + "vt 0 0\nvn 0 0 1\nf 1/1/1/1 2 3\n",
+              "has more than 3 parts", 6)
+    obj_error("obj_line_only_f", v3 + "f\n", "face has 0 vertices", 4)
+    obj_error("obj_line_only_v", v3 + "v\nf 1 2 3\n", "vertex needs 3 coordinates, got 0", 4)
+    obj_error("obj_vertex_nan", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex is not finite", 1)
+    obj_error("obj_vertex_inf", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", "vertex is not finite", 2)
+    obj_error("obj_vertex_1e39", "v 0 0 0\nv 1 0 0\nv 0 1e39 0\nf 1 2 3\n",
+              "vertex is not finite", 3)
+    obj_error("obj_vertex_minus_1e39", "v 0 0 -1e39\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+              "vertex is not finite", 1)
+    obj_error("obj_vertex_exponent_overflow", "v 0 0 0e2147483648\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+              "has an exponent of 10 digits", 1)
+    obj_error("obj_normal_exponent_overflow", v3 + "vn 0 0 1e-2147483649\nf 1//1 2//1 3//1\n",
+              "has an exponent of 10 digits", 4)
+    # Tags (t name ints/reals/strings ...) must hold the values they declare: tinyobjloader
+    # allocates them all, up to 8192 of each per line.
+    obj_error("obj_tag_declares_too_many_values", TRIANGLE + "t crease 8192/8192/8192\n",
+              "tag declares 24576 values, but the line has 0", 5)
+    obj_error("obj_tag_counts_read_as_atoi", TRIANGLE + "t crease 2x/1y/0 1\n",
+              "tag declares 3 values, but the line has 1", 5)
+    ok("obj_tag_with_its_values", "obj", "quiet: true\nfaces: 1\n",
+       obj=TRIANGLE + "t crease 2/1/0 1 2 0.5\n")
+    obj_error("obj_vertex_not_a_number", "v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+              "'zero' is not a number", 1)
+    # Degenerate faces are dropped and counted; when none is left the mesh is an error.
+    obj_error("obj_only_degenerate_faces", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n",
+              "all 2 faces are degenerate")
+    obj_error("obj_no_faces", v3 + "vn 0 0 1\n# no f lines\n", "no faces")
+    ok("obj_one_face", "obj", "quiet: true\nfaces: 1\n", obj=TRIANGLE)
+    ok("obj_some_degenerate_faces", "obj", "quiet: true\nfaces: 1\ndegenerate: 1\n",
+       obj=TRIANGLE + "f 1 1 2\n")
+    # Convex polygons of 4..100 vertices (fans are triangulated: n - 2 triangles each).
+    lines, faces, total = [], [], 0
+    for n in (4, 5, 6, 7, 8, 16, 31, 64, 100):
+        base = total
+        for k in range(n):
+            a = 2 * math.pi * k / n
+            lines.append(f"v {math.cos(a):.6f} {math.sin(a):.6f} {len(faces)}")
+        faces.append("f " + " ".join(str(base + k + 1) for k in range(n)))
+        total += n
+    ok("obj_polygons_4_to_100", "obj",
+       f"quiet: true\nfaces: {sum(n - 2 for n in (4, 5, 6, 7, 8, 16, 31, 64, 100))}\n",
+       obj="\n".join(lines + faces) + "\n")
+
+
+# ---- TOML numbers: NaN, inf and absurd values ----------------------------------------------
+
+def numbers():
+    tri_scene = lambda name, extra: CAMERA + mesh(f"{name}.obj", extra)  # noqa: E731
+    for name, toml, line in [
+        ("nan_camera_position", "[camera]\nposition = [nan, 1, 5]\nlook_at = [0, 0, 0]\n", 2),
+        ("inf_camera_look_at", "[camera]\nposition = [0, 1, 5]\nlook_at = [0, +inf, 0]\n", 3),
+        ("nan_camera_up", CAMERA + "up = [0, -nan, 0]\n", 4),
+        ("inf_fov", CAMERA + "fov = inf\n", 4),
+        ("nan_radius", CAMERA + RED + sphere(radius="nan"), 8),
+        ("neg_inf_sphere_center", CAMERA + RED + sphere(center="[0, -inf, 0]"), 7),
+        ("inf_diffuse", CAMERA + "[materials.red]\ndiffuse = [1, inf, 0]\n", 5),
+        ("nan_shininess", CAMERA + "[materials.red]\nshininess = nan\n", 5),
+        ("nan_world_ambient", CAMERA + "[world]\nambient = [nan, 0, 0]\n", 5),
+        ("nan_light_intensity", CAMERA + "[[lights]]\nposition = [0, 5, 0]\nintensity = nan\n", 6),
+        ("inf_light_color", CAMERA + "[[lights]]\nposition = [0, 5, 0]\ncolor = [inf, 1, 1]\n", 6),
+        ("nan_plane_offset",
+         CAMERA + RED + "[[planes]]\nnormal = [0, 1, 0]\noffset = nan\nmaterial = \"red\"\n", 8),
+    ]:
+        scene_error(name, toml, "must be a finite number", line)
+    for name, extra, line in [("inf_scale", "scale = -inf\n", 6),
+                              ("nan_rotate", "rotate = [0, +nan, 0]\n", 6),
+                              ("inf_translate", "translate = [inf, 0, 0]\n", 6)]:
+        scene_error(name, tri_scene(name, extra), "must be a finite number", line, obj=TRIANGLE)
+    for name, toml, message, line in [
+        ("radius_1e-300", CAMERA + RED + sphere(radius="1e-300"), "radius must be > 0", 8),
+        ("radius_negative", CAMERA + RED + sphere(radius="-1"), "radius must be > 0", 8),
+        ("radius_1e300", CAMERA + RED + sphere(radius="1e300"), "too large", 8),
+        ("radius_integer_overflow", CAMERA + RED + sphere(radius="9223372036854775808"),
+         "invalid TOML", 8),
+        ("fov_0", CAMERA + "fov = 0\n", "camera.fov must be in (0, 180)", 4),
+        ("fov_180", CAMERA + "fov = 180\n", "camera.fov must be in (0, 180)", 4),
+        ("fov_1000", CAMERA + "fov = 1000\n", "camera.fov must be in (0, 180)", 4),
+        ("ior_0", CAMERA + "[materials.glass]\nior = 0\n", "ior must be > 0", 5),
+        ("shininess_negative", CAMERA + "[materials.m]\nshininess = -1\n", "must be >= 0", 5),
+        ("intensity_negative", CAMERA + "[[lights]]\nposition = [0, 5, 0]\nintensity = -1\n",
+         "intensity must be >= 0", 6),
+        ("transparency_2", CAMERA + "[materials.m]\ntransparency = 2\n", "must be in [0, 1]", 5),
+        ("colour_negative", CAMERA + "[materials.m]\nspecular = [0, -0.5, 0]\n", "must be >= 0", 5),
+    ]:
+        scene_error(name, toml, message, line)
+    scene_error("scale_zero", tri_scene("scale_zero", "scale = 0\n"), "must not be zero", 6,
+                obj=TRIANGLE)
+    scene_error("scale_1e30", tri_scene("scale_1e30", "scale = 1e30\n"), "too large", 6,
+                obj=TRIANGLE)
+    scene_error("scale_flattens_mesh", tri_scene("scale_flattens_mesh", "scale = 1e-30\n"),
+                "degenerate after the transform", 4, obj=TRIANGLE)
+    # Areas that overflow a float count as degenerate (vertices cannot: 1e19 * 1e15 < 3e38).
+    scene_error("scale_overflows_area", tri_scene("scale_overflows_area", "scale = 1e15\n"),
+                "is degenerate after the transform", 4,
+                obj="v 0 0 0\nv 1e9 0 0\nv 0 1e9 0\nf 1 2 3\n")
+
+
+# ---- keys and types -----------------------------------------------------------------------
+
+def keys():
+    for name, toml, message, line in [
+        ("missing_camera", RED + sphere(), "missing required table [camera]", None),
+        ("missing_camera_position", "[camera]\nlook_at = [0, 0, 0]\n",
+         "camera is missing the required key 'position'", 1),
+        ("missing_radius", CAMERA + RED + "[[spheres]]\ncenter = [0, 0, 0]\nmaterial = \"red\"\n",
+         "spheres[0] is missing the required key 'radius'", 6),
+        ("missing_mesh_file", CAMERA + "[[meshes]]\nscale = 2\n",
+         "meshes[0] is missing the required key 'file'", 4),
+        ("wrong_type_radius", CAMERA + RED + sphere(radius='"big"'),
+         "spheres[0].radius must be a number (got a string)", 8),
+        ("wrong_type_vector_length", CAMERA + "up = [0, 1]\n", "got 2 elements", 4),
+        ("wrong_type_vector_element", CAMERA + "up = [0, true, 0]\n",
+         "camera.up[1] must be a number (got a boolean)", 4),
+        ("wrong_type_spheres_table", CAMERA + RED + "[spheres]\nradius = 1\n",
+         "spheres must be an array of tables", 6),
+        ("wrong_type_camera", "camera = 5\n", "camera must be a table (got an integer)", 1),
+        ("wrong_type_material_name", CAMERA + RED + sphere(material="3"),
+         "material must be a string (got an integer)", 9),
+        ("wrong_type_date", CAMERA + "fov = 1979-05-27\n", "must be a number (got a date)", 4),
+        ("unknown_key_with_hint", CAMERA + RED + "[[spheres]]\ncenter = [0, 0, 0]\nradious = 1\n"
+         "material = \"red\"\n", "unknown key 'radious' in spheres[0] (did you mean 'radius'?)", 8),
+        ("unknown_top_level_table", CAMERA + "[camrea]\nfov = 50\n",
+         "unknown key 'camrea' (did you mean 'camera'?)", 4),
+        ("undefined_material", CAMERA + RED + sphere(material='"rde"'),
+         "undefined material 'rde' (did you mean 'red'?)", 9),
+        ("look_at_equals_position", "[camera]\nposition = [1, 1, 1]\nlook_at = [1, 1, 1]\n",
+         "look_at must differ from camera.position", 3),
+        ("empty_material_name", CAMERA + RED + sphere(material='""'), "must not be empty", 9),
+    ]:
+        scene_error(name, toml, message, line)
+    # Unicode and spaces in a TOML material name are fine (the key is quoted).
+    ok("material_name_unicode_and_spaces", "toml",
+       "quiet: true\nmaterial: rouge vif écarlate ✓\n",
+       toml=CAMERA + '[materials."rouge vif écarlate ✓"]\ndiffuse = [1, 0, 0]\n' +
+       sphere(material='"rouge vif écarlate ✓"'))
+
+
+# ---- files and paths ----------------------------------------------------------------------
+
+def paths():
+    scene_error("mesh_file_missing", CAMERA + mesh("models/nothing-here.obj"),
+                "nothing-here.obj': file not found", 5)
+    scene_error("mesh_file_is_a_directory", CAMERA + mesh("."), "is a directory, not a file", 5)
+    scene_error("mesh_file_is_dev_zero", CAMERA + mesh("/dev/zero"), "is not a regular file", 5)
+    scene_error("mesh_file_is_dev_urandom", CAMERA + mesh("/dev/urandom"),
+                "is not a regular file", 5)
+    # /proc files are "regular" but report a size of 0 and never end (pagemap is terabytes).
+    scene_error("mesh_file_is_proc_pagemap", CAMERA + mesh("/proc/self/pagemap"),
+                "not an ordinary file", 5)
+    # The scene names itself as its mesh: TOML lines are not OBJ statements, so no faces.
+    error("mesh_file_is_the_scene", "toml", "no faces", file="mesh_file_is_the_scene.toml",
+          toml=CAMERA + mesh("mesh_file_is_the_scene.toml"))
+    error("unknown_extension", "txt", "unknown file extension '.txt'", txt=CAMERA)
+    # MTL libraries: missing (a warning), the OBJ itself, named twice and naming itself.
+    ok("mtl_missing", "obj",
+       "warning: material library 'nowhere.mtl' not found; using the default material\n"
+       "faces: 1\nmaterial: default\n",
+       obj="mtllib nowhere.mtl\nusemtl red\n" + TRIANGLE)
+    ok("mtl_is_the_obj", "obj",
+       "warning: material 'red' is not in the material libraries\nfaces: 1\n",
+       obj="mtllib mtl_is_the_obj.obj\nusemtl red\n" + TRIANGLE)
+    ok("mtllib_chain_to_itself", "obj", "quiet: true\nfaces: 1\nmaterial: "
+       "mtllib_chain_to_itself.obj:red\n",
+       obj="mtllib mtllib_chain_to_itself.mtl mtllib_chain_to_itself.mtl\n"
+       "mtllib mtllib_chain_to_itself.mtl\nusemtl red\n" + TRIANGLE,
+       mtl="mtllib mtllib_chain_to_itself.mtl\nnewmtl red\nKd 1 0 0\n")
+    ok("mtl_is_a_directory", "obj",
+       "warning: material library '.' is not a regular file\nfaces: 1\n",
+       obj="mtllib .\n" + TRIANGLE)
+    ok("mtl_is_dev_zero", "obj",
+       "warning: material library '/dev/zero' is not a regular file\nfaces: 1\n",
+       obj="mtllib /dev/zero\n" + TRIANGLE)
+    ok("usemtl_undefined", "obj",
+       "warning: usemtl_undefined.obj:2: material 'ghost' is not in the material libraries\n"
+       "faces: 2\nmaterial: usemtl_undefined.obj:red\nmaterial: default\n",
+       obj="mtllib usemtl_undefined.mtl\nusemtl ghost\n" + TRIANGLE + "usemtl red\nf 1 3 2\n",
+       mtl="newmtl red\nKd 1 0 0\n")
+    # `newmtl  red` (two blanks) is the material "red" that `usemtl red` uses, with no warning.
+    ok("newmtl_two_blanks", "obj", "quiet: true\nfaces: 1\nmaterial: newmtl_two_blanks.obj:red\n",
+       obj="mtllib newmtl_two_blanks.mtl\nusemtl red\n" + TRIANGLE,
+       mtl="newmtl  red\nKd 1 0 0\nnewmtl \t blue  \nKd 0 0 1\n")
+    ok("mtl_name_unicode", "obj", "quiet: true\nmaterial: mtl_name_unicode.obj:écarlate✓\n",
+       obj="mtllib mtl_name_unicode.mtl\nusemtl écarlate✓\n" + TRIANGLE,
+       mtl="newmtl écarlate✓\nKd 1 0 0\n")
+    # An MTL name with a space: usemtl reads one word (as tinyobjloader does), so "my red" is
+    # not found as "my": a warning and the default material.
+    ok("mtl_name_with_space", "obj",
+       "warning: material 'my' is not in the material libraries\nmaterial: default\n",
+       obj="mtllib mtl_name_with_space.mtl\nusemtl my red\n" + TRIANGLE,
+       mtl="newmtl my red\nKd 1 0 0\n")
+
+
+# ---- size ---------------------------------------------------------------------------------
+
+def sizes():
+    # These inputs are megabytes: the files are not committed. tests/rt2/hostile_test.cpp
+    # writes them (same contents as described here) into a temporary folder when a case
+    # loads "generated/<file>"; see make_generated() there.
+    #   spheres_100000.toml:         CAMERA, material m, 100 000 spheres of radius 0.4
+    #   long_line_toml_comment.toml: CAMERA + RED, a 1 MiB comment, one sphere
+    #   long_line_obj_comment.obj:   a 1 MiB comment, then TRIANGLE
+    #   long_line_obj_vertex.obj:    "v 0 0 0" + 262 144 more coordinates, a triangle
+    #   long_line_toml_key.toml:     CAMERA, then a 1 MiB key on line 4
+    def generated(name, ext, expect):
+        write(f"{name}.expect", f"load: generated/{name}.{ext}\n{expect}")
+    generated("spheres_100000", "toml", "ok: true\nquiet: true\nspheres: 100000\n")
+    generated("long_line_toml_comment", "toml", "ok: true\nquiet: true\nspheres: 1\n")
+    generated("long_line_obj_comment", "obj", "ok: true\nquiet: true\nfaces: 1\n")
+    generated("long_line_obj_vertex", "obj", "ok: true\nquiet: true\nfaces: 1\n")
+    generated("long_line_toml_key", "toml", "error: unknown key\nline: 4\n")
+
+
+def main():
+    malformed_toml()
+    fuzz_found()
+    truncated()
+    encodings()
+    depth()
+    obj_faces()
+    numbers()
+    keys()
+    paths()
+    sizes()
+
+
+if __name__ == "__main__":
+    main()
