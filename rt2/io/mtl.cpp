@@ -49,8 +49,10 @@ std::string normalize_mtl(std::string_view text) {
   out.reserve(text.size() + 1);
   for_each_line(text, [&](std::size_t, std::string_view s) {
     const std::string_view name = newmtl_name(s);
-    out += name.empty() ? s : "newmtl ";
-    out += name;
+    if (name.empty())
+      out += s;
+    else
+      out.append("newmtl ").append(name);
     out += '\n';
   });
   return out;
@@ -68,8 +70,7 @@ void scan_mtl(const std::string& file, std::string_view text,
       return;
     }
     // Values and texture options: tinyobjloader may read any of them as a number.
-    for (const std::string_view token : split_blanks(s))
-      if (huge_exponent(token)) fail_huge_exponent(file, line, token);
+    check_exponents(file, line, split_blanks(s));
     if (current && (s.starts_with("Ni ") || s.starts_with("Ni\t"))) {
       current->has_ni = true;
     } else if (current && (s.starts_with("Kr ") || s.starts_with("Kr\t"))) {

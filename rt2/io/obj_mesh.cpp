@@ -20,6 +20,8 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <span>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <unordered_map>
@@ -115,11 +117,11 @@ void check_face(const std::string& file, std::size_t line, const std::vector<std
   }
 }
 
-// Numbers of the statements whose values tinyobjloader parses as reals (see huge_exponent).
+// Refuses a value of the statement `t` (its tokens after the keyword) that tinyobjloader
+// would parse as a real and overflow on (see huge_exponent).
 void check_reals(const std::string& file, std::size_t line,
                  const std::vector<std::string_view>& t) {
-  for (std::size_t i = 1; i < t.size(); ++i)
-    if (huge_exponent(t[i])) fail_huge_exponent(file, line, t[i]);
+  check_exponents(file, line, std::span(t).subspan(1));
 }
 
 // The number that atoi, as tinyobjloader uses it, reads at the start of `s` (0 if none),
@@ -134,21 +136,29 @@ long long atoi_prefix(std::string_view s) {
 
 // "t name ints/reals/strings values...": tinyobjloader allocates and parses as many values as
 // the counts say (up to 8192 each, even when the line has none), so a short line could cost
-// hundreds of kilobytes; the line must hold the values it declares.
-void check_tag(const std::string& file, std::size_t line, const std::vector<std::string_view>& t) {
+// hundreds of kilobytes; the line `s` must hold the values it declares. The counts are read
+// as tinyobjloader's parseTagTriple reads them: blanks are skipped before each count, also
+// after a '/' ("0/ 8192/ 8192" declares 16 384 values).
+void check_tag(const std::string& file, std::size_t line, std::string_view s) {
+  const auto skip = [&s](std::size_t n) { s.remove_prefix(std::min(n, s.size())); };
+  const auto skip_blanks = [&] { skip(s.find_first_not_of(" \t")); };
+  skip(1);  // "t"
+  skip_blanks();
+  skip(s.find_first_of(" \t\r"));  // the name
   long long declared = 0;
-  std::string_view counts = t.size() > 2 ? t[2] : std::string_view();
-  for (int k = 0; k < 3 && !counts.empty(); ++k) {
-    const std::size_t slash = std::min(counts.find('/'), counts.size());
-    declared += std::clamp(atoi_prefix(counts.substr(0, slash)), 0LL, 8192LL);
-    counts = slash < counts.size() ? counts.substr(slash + 1) : std::string_view();
+  for (int k = 0; k < 3; ++k) {
+    skip_blanks();
+    declared += std::clamp(atoi_prefix(s), 0LL, 8192LL);
+    skip(s.find_first_of(k < 2 ? "/ \t\r" : " \t\r"));
+    if (k == 2 || !s.starts_with('/')) break;
+    skip(1);
   }
-  const std::size_t present = t.size() > 3 ? t.size() - 3 : 0;
-  if (declared > static_cast<long long>(present))
+  const std::vector<std::string_view> values = split_blanks(s);
+  if (declared > static_cast<long long>(values.size()))
     error_at(file, line, 0,
              "tag declares " + std::to_string(declared) + " values, but the line has " +
-                 std::to_string(present));
-  check_reals(file, line, t);
+                 std::to_string(values.size()));
+  check_exponents(file, line, values);
 }
 
 // Two passes: the totals of v, vt and vn first (a face may name a vertex defined after it,
@@ -179,7 +189,7 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
     } else if (t[0] == "vw") {
       check_reals(file, line, t);
     } else if (t[0] == "t") {
-      check_tag(file, line, t);
+      check_tag(file, line, s);
     } else if (t[0] == "f") {
       check_face(file, line, t, defined, total);
       ++scan.faces;
@@ -256,9 +266,11 @@ std::string read_libraries(const std::string& obj_path, const ObjScan& scan, boo
     const fs::file_type type = fs::status(path, ec).type();
     if (type != fs::file_type::regular) {  // devices and pipes need not end: not read
       missing = true;
+      const std::string why = type == fs::file_type::not_found ? "not found"
+                              : ec                             ? "cannot be read: " + ec.message()
+                                                               : "is not a regular file";
       if (!quiet)
-        warn(obj_path + ": material library '" + name + "' " +
-             (type == fs::file_type::not_found ? "not found" : "is not a regular file") +
+        warn(obj_path + ": material library '" + name + "' " + why +
              "; using the default material");
       continue;
     }
@@ -347,10 +359,10 @@ void warn_unknown_usemtl(const std::string& path, const ObjScan& scan,
 Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& scene,
                  int override_material) {
   // Without a byte-order mark; copied only when there is one (the text may be large).
-  const std::string stripped = file_text.starts_with("\xEF\xBB\xBF")
-                                   ? std::string(without_bom(file_text))
-                                   : std::string();
-  const std::string& text = stripped.empty() ? file_text : stripped;
+  std::string stripped;
+  const bool has_bom = file_text.starts_with(kUtf8Bom);
+  if (has_bom) stripped = without_bom(file_text);
+  const std::string& text = has_bom ? stripped : file_text;
   if (override_material >= 0 &&
       static_cast<std::size_t>(override_material) >= scene.materials.size())
     throw Error(path + ": override material " + std::to_string(override_material) +

@@ -141,13 +141,19 @@ std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::
   const std::size_t line =
       1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
   const std::size_t nl = before.rfind('\n');
-  return {line, nl == std::string_view::npos ? pos + 1 : pos - nl};
+  std::string_view line_text = before.substr(nl == std::string_view::npos ? 0 : nl + 1);
+  if (nl == std::string_view::npos) line_text = without_bom(line_text);
+  // Characters, as toml++ counts them: every byte but UTF-8 continuation bytes (10xxxxxx).
+  const auto continuation = std::count_if(line_text.begin(), line_text.end(), [](char c) {
+    return (static_cast<unsigned char>(c) & 0xC0) == 0x80;
+  });
+  return {line, line_text.size() - static_cast<std::size_t>(continuation) + 1};
 }
 
 // ---- lines and tokens -------------------------------------------------------------------
 
 std::string_view without_bom(std::string_view text) {
-  return text.starts_with("\xEF\xBB\xBF") ? text.substr(3) : text;
+  return text.starts_with(kUtf8Bom) ? text.substr(kUtf8Bom.size()) : text;
 }
 
 std::vector<std::string_view> split_blanks(std::string_view s) {
@@ -174,10 +180,12 @@ bool huge_exponent(std::string_view token) {
   return end - i >= 10;
 }
 
-[[noreturn]] void fail_huge_exponent(const std::string& file, std::size_t line,
-                                     std::string_view token) {
-  error_at(file, line, 0,
-           "number '" + std::string(token) + "' has an exponent of 10 digits or more");
+void check_exponents(const std::string& file, std::size_t line,
+                     std::span<const std::string_view> tokens) {
+  for (const std::string_view token : tokens)
+    if (huge_exponent(token))
+      error_at(file, line, 0,
+               "number '" + std::string(token) + "' has an exponent of 10 digits or more");
 }
 
 bool parse_double(std::string_view token, double& v) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -75,7 +76,8 @@ void validate(const std::string& file, const Scene& scene);
 // file names it (the message starts with that, and quotes the path).
 std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context);
 
-// 1-based line and column of byte `pos` in `text` (the column counts bytes).
+// 1-based line and column of byte `pos` in `text`. The column counts UTF-8 characters (not
+// bytes) and not a byte-order mark, as toml++ does, so that both report the same places.
 std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t pos);
 
 // ---- lines and tokens -------------------------------------------------------------------
@@ -97,8 +99,11 @@ void for_each_line(std::string_view text, Fn&& fn) {
   }
 }
 
-// `text` without a leading UTF-8 byte-order mark (Windows editors write one; tinyobjloader
-// would take it for part of the first line's keyword, and drop that line).
+// The UTF-8 byte-order mark that Windows editors write at the start of a text file.
+inline constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+// `text` without a leading kUtf8Bom (tinyobjloader would take it for part of the first
+// line's keyword, and drop that line).
 std::string_view without_bom(std::string_view text);
 
 // The blank-separated (spaces, tabs) tokens of `s`.
@@ -110,9 +115,9 @@ std::vector<std::string_view> split_blanks(std::string_view s);
 // and MTL scans refuse them all before tinyobjloader sees them.
 bool huge_exponent(std::string_view token);
 
-// Throws the error for a token that huge_exponent refuses, at `file`:`line`.
-[[noreturn]] void fail_huge_exponent(const std::string& file, std::size_t line,
-                                     std::string_view token);
+// Refuses (throws rt2::Error at `file`:`line`) the first of `tokens` that huge_exponent flags.
+void check_exponents(const std::string& file, std::size_t line,
+                     std::span<const std::string_view> tokens);
 
 // The whole token as a number, or false.
 bool parse_double(std::string_view token, double& v);

@@ -35,7 +35,6 @@ namespace fs = std::filesystem;
 // Limits beyond which input is a mistake, not a scene.
 constexpr std::size_t kMaxSceneBytes = 64u << 20;  // a TOML scene file
 constexpr int kMaxKeyDepth = 256;                  // see TomlScreen
-constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
 // ---- TOML screening -----------------------------------------------------------------------
 
@@ -86,6 +85,17 @@ bool is_date(std::string_view d) {
   return true;
 }
 
+// What toml++ 3.3 takes for a date that a time may follow after a space: 10 characters,
+// underscores not counted, of digits and dashes with '-' at 4 and 7. (Wider than its test,
+// which also wants a digit first: a wider test only screens more of a value that is invalid.)
+bool is_date_like(std::string_view token) {
+  std::string d;
+  for (const char c : token)
+    if (c != '_') d += c;
+  if (d.size() != 10 || d[4] != '-' || d[7] != '-') return false;
+  return std::all_of(d.begin(), d.end(), [](char c) { return is_digit(c) || c == '-'; });
+}
+
 [[noreturn]] void fail_at_byte(const std::string& file, std::string_view text, std::size_t i,
                                const std::string& msg) {
   const auto [line, column] = line_and_column(text, i);
@@ -124,8 +134,9 @@ void check_line_ending_escape(const std::string& file, std::string_view text, st
   const std::size_t i = text.find_first_not_of(" \t\r\n", slash + 1);
   if (i == std::string_view::npos || static_cast<unsigned char>(text[i]) < 0x80) return;
   fail_at_byte(file, text, i,
-               "invalid TOML: a backslash in a multi-line string followed by a non-ASCII "
-               "character, which toml++ cannot read; write it as an escape such as \\u00E9");
+               "a line-ending backslash in a multi-line string followed by a non-ASCII "
+               "character: valid TOML, but toml++ 3.3 cannot read it safely; write the "
+               "character as an escape such as \\u00E9");
 }
 
 // A lexical pass over a TOML text before toml++ parses it, for what toml++ 3.3 handles badly.
@@ -179,19 +190,16 @@ class TomlScreen {
   }
 
   void in_comment_or_string(char c) {
-    if (state_ == State::basic || state_ == State::ml_basic) {
-      if (c == '\\') {
-        if (state_ == State::ml_basic) check_line_ending_escape(file_, text_, i_);
-        ++i_;
-      } else if (state_ == State::basic ? c == '"' : text_.substr(i_, 3) == "\"\"\"") {
-        i_ += state_ == State::basic ? 0 : 2;
-        state_ = State::normal;
-      }
-    } else if (state_ == State::literal || state_ == State::ml_literal) {
-      if (state_ == State::literal ? c == '\'' : text_.substr(i_, 3) == "'''") {
-        i_ += state_ == State::literal ? 0 : 2;
-        state_ = State::normal;
-      }
+    if (state_ == State::comment) return;
+    const bool basic = state_ == State::basic || state_ == State::ml_basic;
+    const bool multi = state_ == State::ml_basic || state_ == State::ml_literal;
+    const char quote = basic ? '"' : '\'';
+    if (basic && c == '\\') {
+      if (multi) check_line_ending_escape(file_, text_, i_);
+      ++i_;  // the escaped character cannot end the string
+    } else if (multi ? text_.substr(i_, 3) == std::string(3, quote) : c == quote) {
+      i_ += multi ? 2 : 0;
+      state_ = State::normal;
     }
   }
 
@@ -227,7 +235,9 @@ class TomlScreen {
       dot();
     }
     token_dots_ = is_bare_key_char(c) ? token_dots_ + (c == '.') : 0;
-    if (!is_blank(c)) {
+    // A comment or a line break (its '\r') between '[' or ',' and a value is blank to toml++:
+    // the value after it still starts a value.
+    if (!is_blank(c) && c != '\r' && c != '#') {
       line_start_ = false;
       last_ = c;
     }
@@ -245,10 +255,20 @@ class TomlScreen {
   // is_value_terminator: so no character of it may be non-ASCII (check_ascii). The token is
   // skipped here, so its dots are not keys and its quotes open no string. Valid values
   // contain neither, so only invalid TOML, which toml++ refuses, is read differently.
+  //
+  // A token of 10 digits and dashes with '-' at 4 and 7 (a date) followed by a space and a
+  // digit is a date-time written with a space, and toml++ scans on to the next terminator:
+  // so does this.
   void scanned_value() {
-    std::size_t end = i_;
-    while (end < text_.size() && !is_value_end(text_[end])) ++end;
+    const auto token_end = [&](std::size_t from) {
+      while (from < text_.size() && !is_value_end(text_[from])) ++from;
+      return from;
+    };
+    std::size_t end = token_end(i_);
     check_date_time(end);
+    if (is_date_like(text_.substr(i_, end - i_)) && end + 1 < text_.size() && text_[end] == ' ' &&
+        is_digit(text_[end + 1]))
+      end = token_end(end + 1);
     for (; i_ < end; ++i_) check_ascii(text_[i_]);
     --i_;  // run() steps past the token's last character
     last_ = text_[i_];

@@ -88,14 +88,14 @@ def malformed_toml():
     scene_error("toml_header_then_newline", CAMERA + "[\n",
                 "a table header must start with a key", 4)
     # toml++ 3.3 reaches TOML_UNREACHABLE on most non-ASCII characters where it expects
-    # whitespace (found by fuzzing; see screen_toml).
+    # whitespace (found by fuzzing; see TomlScreen).
     scene_error("toml_non_ascii_after_number", CAMERA + "fov = 50\u02e2\n",
                 "outside a string or comment", 4)
     scene_error("toml_non_ascii_bare_key", CAMERA + "caméra = 1\n",
                 "outside a string or comment", 4)
     scene_error("toml_non_ascii_after_line_ending_backslash",
                 CAMERA + RED + sphere(material='"""\\\n  \u00e9"""'),
-                "backslash in a multi-line string", 10)
+                "valid TOML, but toml++ 3.3 cannot read it safely", 10)
 
 
 def fuzz_found():
@@ -122,6 +122,35 @@ def fuzz_found():
     scene_error("fuzz_quotes_inside_a_number", "x = [ 0.\"\"\"m!\ufefa",
                 "outside a string or comment", 1)
     scene_error("fuzz_quote_after_number", "x = 1'''\u00e9'''", "outside a string or comment", 1)
+
+
+def review_found():
+    """Inputs that got past the screen of fuzz_found(), found by reading the screen and
+    toml++ 3.3 side by side (each crashed an asserting toml++), and an OBJ tag line that
+    allocated megabytes."""
+    # A comment or a CRLF line break between '[' and a value: the value is still screened.
+    scene_error("review_comment_before_date_time", "x = [ # c\n1979-05-27T: ]\n",
+                "a date-time needs a time", 2)
+    scene_error("review_crlf_before_date_space_digit", "x = [\r\n1979-05-27 1]\r\n",
+                "a value followed by a space and one digit", 2)
+    scene_error("review_comment_before_quotes_in_number",
+                'x = [ # c\n 0."""\u02e2""" ]\n', "outside a string or comment", 2)
+    # A date, a space and a time are one token to toml++: no quote in it opens a string.
+    scene_error("review_date_space_time_quotes", 'x = 1979-05-27 07:32:00."""\u02e2"""',
+                "outside a string or comment", 1)
+    scene_error("review_date_space_time_literal", "x = 1979-05-27 07:32:00Z.'\u02e2'",
+                "outside a string or comment", 1)
+    # Columns count characters, as toml++'s do, not bytes and not a byte-order mark.
+    scene_error("review_column_after_bom", "\ufeffx = [}", ":1:6: invalid TOML: '}'", 1)
+    scene_error("review_column_counts_characters", '"\u00e9\u00e9\u00e9" = [}',
+                ":1:10: invalid TOML: '}'", 1)
+    # tinyobjloader skips blanks after each '/' of a tag's counts: 16 384 values declared.
+    obj_error("review_obj_tag_counts_after_blanks", TRIANGLE + "t a 0/ 8192/ 8192\n",
+              "tag declares 16384 values, but the line has 0", 5)
+    # A valid one passes the screen: toml++ parses it, and rt2 then names the unknown key.
+    scene_error("review_date_space_time_valid",
+                CAMERA + RED + "created = 1979-05-27 07:32:00Z\n" + sphere(),
+                "unknown key 'created'", 6)
 
 
 def truncated():
@@ -423,6 +452,7 @@ def sizes():
 def main():
     malformed_toml()
     fuzz_found()
+    review_found()
     truncated()
     encodings()
     depth()
