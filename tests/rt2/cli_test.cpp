@@ -2,7 +2,6 @@
 // one line on stderr, a non-zero exit and no output file left behind.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <string>
 
 #include "rt2/image_io.h"
+#include "tests/rt2/temp_dir.h"
 
 namespace {
 
@@ -24,16 +24,7 @@ struct Outcome {
 
 class Cli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rt2cpr_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path(const std::string& name) const { return dir_.path(name); }
   void write(const std::string& name, const std::string& text) const {
     std::ofstream(path(name), std::ios::binary) << text;
   }
@@ -52,7 +43,7 @@ class Cli : public ::testing::Test {
   // Only the given files exist in the test folder (besides the captured streams).
   std::size_t files_other_than_streams() const {
     std::size_t n = 0;
-    for (const auto& e : fs::directory_iterator(dir_)) {
+    for (const auto& e : fs::directory_iterator(dir_.root())) {
       const std::string f = e.path().filename().string();
       n += f != "stdout" && f != "stderr";
     }
@@ -67,7 +58,7 @@ class Cli : public ::testing::Test {
     EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
   }
 
-  fs::path dir_;
+  rt2::test::TempDir dir_{"rt2cpr"};  // a fresh one per test
 };
 
 const char* kTiny = "--width 24 --height 16 --quiet";

@@ -20,10 +20,9 @@
 #include <string_view>
 #include <vector>
 
-#include <unistd.h>
-
 #include "rt2/error.h"
 #include "rt2/scene_io.h"
+#include "tests/rt2/temp_dir.h"
 
 #ifndef RT2_SOURCE_DIR
 #error "the build defines RT2_SOURCE_DIR as the repository root"
@@ -40,8 +39,7 @@ const fs::path& hostile_dir() {
 }
 
 // The cases whose inputs are megabytes are not committed: "generated/<file>" in a .expect
-// file names one of these, written on first use into a folder of the system's temporary
-// directory (removed at exit). tests/hostile/generate.py describes the same contents.
+// file names one of these, written on first use into a TempDir (removed at exit). tests/hostile/generate.py describes the same contents.
 const std::string kCamera = "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 0, 0]\n";
 const std::string kRed = "[materials.red]\ndiffuse = [1, 0, 0]\n";  // lines 4-5
 const std::string kSphere = "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"red\"\n";
@@ -69,24 +67,15 @@ std::string make_generated(const std::string& file) {
   return {};
 }
 
-struct GeneratedDir {
-  fs::path dir = fs::temp_directory_path() / ("rt2-hostile-" + std::to_string(::getpid()));
-  ~GeneratedDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-};
-
 std::string generated_path(const std::string& file) {
-  static const GeneratedDir gen;
-  const fs::path path = gen.dir / file;
+  static const test::TempDir dir("hostile");
+  const std::string path = dir.path(file);
   if (!fs::exists(path)) {
     const std::string content = make_generated(file);
-    if (content.empty()) return path.string();  // unknown: loading fails, the case says why
-    fs::create_directories(gen.dir);
-    std::ofstream(path, std::ios::binary) << content;
+    if (content.empty()) return path;  // unknown: loading fails, the case says why
+    dir.write(file, content);
   }
-  return path.string();
+  return path;
 }
 
 // A path named in a .expect file: "generated/<file>" (above), relative to tests/hostile/, or

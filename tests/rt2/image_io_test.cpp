@@ -2,25 +2,20 @@
 // the image comparison measures what it says.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 
 #include "rt2/error.h"
 #include "rt2/image_compare.h"
+#include "tests/rt2/temp_dir.h"
 #include "rt2/image_io.h"
 
 namespace rt2 {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rt2_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 Image gradient(int w, int h) {
   Image img(w, h);
@@ -35,7 +30,8 @@ Image gradient(int w, int h) {
 }
 
 TEST(ImageIo, PngExrAndPpmRoundTripWithinTheirPrecision) {
-  const fs::path d = temp_dir("roundtrip");
+  const test::TempDir tmp("image_io_roundtrip");
+  const fs::path& d = tmp.root();
   const Image img = gradient(37, 21);
   for (const char* ext : {".png", ".exr", ".ppm"}) {
     const std::string path = (d / (std::string("img") + ext)).string();
@@ -50,11 +46,11 @@ TEST(ImageIo, PngExrAndPpmRoundTripWithinTheirPrecision) {
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(d)) files += e.is_regular_file();
   EXPECT_EQ(files, 3u);
-  fs::remove_all(d);
 }
 
 TEST(ImageIo, MissingFolderUnsupportedExtensionAndDirectoryTargetFailCleanly) {
-  const fs::path d = temp_dir("bad");
+  const test::TempDir tmp("image_io_bad");
+  const fs::path& d = tmp.root();
   const Image img = gradient(4, 4);
   EXPECT_THROW(write_image((d / "no/such/dir/x.png").string(), img), Error);
   EXPECT_THROW(write_image((d / "x.notaformat").string(), img), Error);
@@ -64,16 +60,15 @@ TEST(ImageIo, MissingFolderUnsupportedExtensionAndDirectoryTargetFailCleanly) {
   std::size_t files = 0;
   for (const auto& e : fs::recursive_directory_iterator(d)) files += e.is_regular_file();
   EXPECT_EQ(files, 0u);
-  fs::remove_all(d);
 }
 
 TEST(ImageIo, UnwritableFolderFailsAndLeavesNoFile) {
   if (::geteuid() != 0) {  // a read-only folder stops an ordinary user before writing
-    const fs::path d = temp_dir("ro");
+    const test::TempDir tmp("image_io_ro");
+    const fs::path& d = tmp.root();
     ::chmod(d.c_str(), 0555);
     EXPECT_THROW(check_writable_image((d / "x.png").string()), Error);
     ::chmod(d.c_str(), 0755);
-    fs::remove_all(d);
   }
   // /proc refuses new files even to root: the write itself fails, cleanly.
   EXPECT_THROW(write_image("/proc/rt2_test_image.png", gradient(4, 4)), Error);

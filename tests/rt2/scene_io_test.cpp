@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "rt2/error.h"
+#include "tests/rt2/temp_dir.h"
 
 #ifndef RT2_SOURCE_DIR
 #error "the build defines RT2_SOURCE_DIR as the repository root"
@@ -29,34 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the system's temporary folder, removed with its contents at the end.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device random;
-    root_ = fs::temp_directory_path() /
-            ("rt2_scene_io_" + std::to_string(::getpid()) + "_" + std::to_string(random()));
-    fs::create_directories(root_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(root_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string path(const std::string& name) const { return (root_ / name).string(); }
-  // Writes `content` byte for byte to `name` (folders created) and returns its path.
-  std::string write(const std::string& name, std::string_view content) const {
-    const fs::path p = root_ / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary).write(content.data(), std::streamsize(content.size()));
-    return p.string();
-  }
-
- private:
-  fs::path root_;
-};
+using test::TempDir;
 
 std::string source_file(const std::string& name) {
   return std::string(RT2_SOURCE_DIR) + "/" + name;
