@@ -2,10 +2,10 @@
 //
 // The Renderer is built once per frame setting: it validates the settings, notes the
 // scene's features, precomputes the subpixel offsets and picks the kernel — a function
-// template over the feature bits (rt2/tracer.h), instantiated for all 64 combinations —
-// so the per-ray code contains exactly what the scene needs and no feature tests on
-// data it does not have. `render_rows` is the whole per-pixel loop; it knows no
-// scheduler (rt2/schedule.h splits a frame and calls it from any thread).
+// template over the feature bits (rt2/tracer.h), instantiated for the 96 combinations that
+// differ (rt2/features.h) — so the per-ray code contains exactly what the scene needs and
+// no feature tests on data it does not have. `render_rows` is the whole per-pixel loop; it
+// knows no scheduler (rt2/schedule.h splits a frame and calls it from any thread).
 #pragma once
 
 #include <cstdint>
