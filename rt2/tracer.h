@@ -31,12 +31,15 @@ struct SurfacePoint {
   vec4 p;                   // on the surface, computed precisely (see offset.h)
   vec4 ng;                  // unit geometric normal, on the side the ray came from
   vec4 ns;                  // unit shading normal, same side
+  vec4 above;               // p moved off the surface along ng: where shadow and reflected
+                            // rays start (offset.h)
   bool entering;            // the ray hit the outside (against the outward normal)
   std::uint32_t material;
 };
 
 template <unsigned F>
-inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h) {
+inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
+                               float offset_scale) {
   SurfacePoint s;
   const std::uint32_t i = prim_index(h.prim);
   if (prim_tag(h.prim) == kTriangleTag) {
@@ -67,6 +70,7 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h) {
     s.ns = -s.ns;
   }
   if (!(dot(s.ns, ray.dir) < 0.0f)) s.ns = s.ng;  // an interpolated normal facing away
+  s.above = offset_ray_origin(s.p, s.ng, offset_scale);
   return s;
 }
 
@@ -88,7 +92,7 @@ inline vec4 shade_local(const Renderer& r, const Ray& ray, const SurfacePoint& s
   vec4 color = m.ambient * sc.ambient;
   if (sc.lights.empty()) return color;
   const vec4 kd = diffuse_at(m, s.p + sc.origin);  // textures live in world coordinates
-  const vec4 origin = offset_ray_origin(s.p, s.ng, r.offset_scale());
+  const vec4& origin = s.above;
   const vec4 view = -ray.dir;
   for (const Light& light : sc.lights) {
     const vec4 to = light.position - origin;
@@ -144,7 +148,7 @@ inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stac
       color += task.weight * sc.background;
       continue;
     }
-    const SurfacePoint s = surface_at<F>(r.accel(), task.ray, h);
+    const SurfacePoint s = surface_at<F>(r.accel(), task.ray, h, r.offset_scale());
     color += task.weight * shade_local<F>(r, task.ray, s, counts);
     if (task.depth >= st.depth) continue;
     const Material& m = sc.materials[s.material];
@@ -157,17 +161,15 @@ inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stac
           stack.push_back({Ray(offset_ray_origin(s.p, -s.ng, r.offset_scale()), t), w,
                            task.depth + 1, RayKind::refraction});
         else  // total internal reflection: the transmitted share is reflected
-          stack.push_back({Ray(offset_ray_origin(s.p, s.ng, r.offset_scale()),
-                               reflect(task.ray.dir, s.ns)),
-                           w, task.depth + 1, RayKind::reflection});
+          stack.push_back(
+              {Ray(s.above, reflect(task.ray.dir, s.ns)), w, task.depth + 1, RayKind::reflection});
       }
     }
     if constexpr (has_feature<F, kReflection>) {
       const float w = task.weight * m.reflectivity;
       if (m.reflectivity > 0.0f && w > st.min_weight)
-        stack.push_back({Ray(offset_ray_origin(s.p, s.ng, r.offset_scale()),
-                             reflect(task.ray.dir, s.ns)),
-                         w, task.depth + 1, RayKind::reflection});
+        stack.push_back(
+            {Ray(s.above, reflect(task.ray.dir, s.ns)), w, task.depth + 1, RayKind::reflection});
     }
   }
   return color;
