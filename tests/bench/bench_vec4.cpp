@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "mlib/timer.h"
+#include "tests/bench/bench_util.h"
 #include "mlib/vec4_functions.h"
 
 namespace {
@@ -139,16 +140,6 @@ constexpr mlib::Timer::Mode kModes[4] = {mlib::Timer::Mode::sum, mlib::Timer::Mo
                                          mlib::Timer::Mode::max, mlib::Timer::Mode::avg};
 constexpr const char* kModeNames[4] = {"sum", "min", "max", "avg"};
 
-// The fixed cost of an empty Start/Stop lap (the minimum over many).
-std::uint64_t empty_lap_ticks(double hz) {
-  mlib::Timer t(mlib::Timer::Mode::min, hz);
-  for (int i = 0; i < 20000; ++i) {
-    t.Start();
-    t.Stop();
-  }
-  return t.Ticks();
-}
-
 template <class Impl>
 Result run(std::uint64_t iterations, std::uint64_t batch, double hz, std::uint64_t overhead,
            double& checksum) {
@@ -184,13 +175,6 @@ Result run(std::uint64_t iterations, std::uint64_t batch, double hz, std::uint64
   return r;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // Median over all (mode, iterations) points of cycles(num) / cycles(den).
 double median_ratio(const std::vector<Result>& rs, const std::string& num,
                     const std::string& den) {
@@ -203,7 +187,7 @@ double median_ratio(const std::vector<Result>& rs, const std::string& num,
         if (b.cycles[m] > 0) ratios.push_back(a.cycles[m] / b.cycles[m]);
     }
   }
-  return median(ratios);
+  return bench::median(ratios);
 }
 
 }  // namespace
@@ -221,7 +205,7 @@ int main(int argc, char** argv) {
 
   const mlib::Timer probe;  // calibrates the TSC once
   const double hz = probe.Frequency();
-  const std::uint64_t overhead = empty_lap_ticks(hz);
+  const std::uint64_t overhead = bench::empty_lap_ticks(hz);
   std::fprintf(stderr, "bench_vec4: TSC %.3f GHz, empty lap %llu ticks subtracted, batch %llu\n",
                hz * 1e-9, static_cast<unsigned long long>(overhead),
                static_cast<unsigned long long>(batch));

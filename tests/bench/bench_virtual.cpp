@@ -59,6 +59,7 @@
 #include <vector>
 
 #include "mlib/timer.h"
+#include "tests/bench/bench_util.h"
 #include "rt2/geometry/plane.h"
 #include "rt2/geometry/sphere.h"
 #include "rt2/geometry/triangle.h"
@@ -302,23 +303,6 @@ struct Row {
   double min, median;  // cycles per call
 };
 
-// The fixed cost of an empty Start/Stop lap (the minimum over many).
-std::uint64_t empty_lap_ticks(double hz) {
-  mlib::Timer t(mlib::Timer::Mode::min, hz);
-  for (int i = 0; i < 20000; ++i) {
-    t.Start();
-    t.Stop();
-  }
-  return t.Ticks();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // Collects one design's passes: lap ticks minus the empty lap, per call.
 class Laps {
  public:
@@ -335,7 +319,7 @@ class Laps {
   }
   Row row(const char* experiment, std::size_t n, const char* design) const {
     return {experiment, n, design, *std::min_element(per_call_.begin(), per_call_.end()),
-            median(per_call_)};
+            bench::median(per_call_)};
   }
 
  private:
@@ -439,7 +423,7 @@ int main(int argc, char** argv) {
   }
 
   const mlib::Timer probe;  // calibrates the TSC once
-  Context ctx{probe.Frequency(), empty_lap_ticks(probe.Frequency()), passes};
+  Context ctx{probe.Frequency(), bench::empty_lap_ticks(probe.Frequency()), passes};
   std::fprintf(stderr,
                "bench_virtual: TSC %.3f GHz, empty lap %llu ticks subtracted, %d passes; "
                "intersect mix 80%% triangles / 15%% spheres / 5%% planes\n",
