@@ -1,8 +1,8 @@
 // rt2/image_compare.h — how far an image is from a reference.
 //
-// RMSE over the RGB channels comes from OpenImageIO's ImageBufAlgo::compare (through
-// image_io.cpp), and PSNR = 20 log10(1 / RMSE) with peak 1.0 (OIIO's own PSNR would take
-// the images' maximum as the peak, which changes with highlights); SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5,
+// RMSE over the RGB channels (in double), and PSNR = 20 log10(1 / RMSE) with peak 1.0
+// (OIIO's own PSNR would take the images' maximum as the peak, which changes with
+// highlights); SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5,
 // K1 = 0.01, K2 = 0.03, dynamic range 1) is computed here on luminance, with both images
 // clamped to [0, 1] first, and averaged over the image. Identical images give RMSE 0,
 // PSNR +inf and SSIM 1.
@@ -35,8 +35,5 @@ double ssim(const Image& a, const Image& b);
 // RMSE of `image` against `reference` over the reference's edge pixels (see above);
 // `pixels` receives their count.
 double edge_rmse(const Image& image, const Image& reference, std::size_t& pixels);
-
-// RMSE via OIIO, and PSNR from it (defined in image_io.cpp, the one file with OIIO).
-void rmse_psnr(const Image& a, const Image& b, double& rmse, double& psnr);
 
 }  // namespace rt2

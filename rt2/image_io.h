@@ -1,9 +1,14 @@
-// rt2/image_io.h — writing (and reading) images through OpenImageIO.
+// rt2/image_io.h — image files: writing rendered frames and reading reference images.
 //
-// The format follows the file name's extension (at least .png, .exr, .ppm, also .jpg,
-// .tif, .hdr ...). A write goes to a temporary file in the same folder, which is renamed
-// over the target only when complete: a failed or interrupted write never leaves a
-// half-written or empty file behind. This is the only file of rt2 that includes OIIO.
+// The format follows the file name's extension (.png, .exr, .ppm, .jpg, .tif, .hdr, and
+// whatever else the codec can write to memory). Float formats (.exr, .hdr, .tif) store the
+// renderer's linear RGB values as they are. Display formats (.png, .jpg, .ppm and every
+// other 8-bit format) store sRGB-encoded values (rt2/srgb.h), clamped to [0, 1] and
+// rounded to 8 bits, and are tagged sRGB. Reading undoes the encoding, so a reference image
+// is compared in linear values whatever its format.
+//
+// Images are encoded in memory (rt2/image_codec.h, OpenImageIO loaded on first use) and
+// written by rt2/io/output_file.h: the file appears complete or not at all.
 #pragma once
 
 #include <string>
@@ -12,17 +17,20 @@
 
 namespace rt2 {
 
-// Checks, before any rendering, that `path` can be written: its extension names a format
-// OIIO can write, and its folder exists and is writable. Throws rt2::Error naming the
-// problem otherwise.
+// Checks, before any rendering, that `path` can be written: the target is acceptable to
+// rt2::io::check_output_path, and its extension names a format the codec can write.
+// Throws rt2::Error naming the problem otherwise.
 void check_writable_image(const std::string& path);
 
-// Writes linear RGB floats. 8-bit formats (png, ppm, jpg) get values clamped to [0, 1]
-// and rounded; float formats (exr, hdr) keep them. Throws rt2::Error (with OIIO's reason)
-// on failure, leaving no file behind.
+// True for the formats that store linear float values (.exr, .hdr, .tif, .tiff).
+bool is_linear_format(const std::string& path);
+
+// Writes the linear RGB `image` as above. Throws rt2::Error "cannot write PATH: reason" on
+// any failure, leaving no file (and no temporary file) behind.
 void write_image(const std::string& path, const Image& image);
 
-// Reads any image OIIO can read as RGB floats (extra channels dropped, grey replicated).
+// Reads the regular file `path` (not a device or pipe, which may never end) as linear RGB
+// floats. Throws rt2::Error "PATH: reason" when it cannot.
 Image read_image(const std::string& path);
 
 }  // namespace rt2

@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <climits>
+#include <filesystem>
 #include <cmath>
 #include <iostream>
 #include <map>
 
 #include "rt2/error.h"
+#include "rt2/io/output_file.h"
+#include "rt2/version.h"
 
 namespace rt2cpr {
 
@@ -43,6 +46,28 @@ Presets (explicit options override them):
 Without a preset: 800x600, subpixels 1, depth 4, the scene's own lights.
 Extra lights (--lights beyond the scene's own) are white, on a ring above the scene.)";
 
+// The files named on the command line: none empty, and the statistics and the image never
+// overwrite an input or each other.
+template <class Given>
+void check_paths(const Options& o, Given&& given) {
+  for (const auto& [flag, value] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
+                                    {"--stats", &o.stats}, {"--reference", &o.reference}})
+    if (given(flag) && value->empty()) throw rt2::Error(std::string(flag) + ": empty file name");
+  using rt2::io::same_file;
+  if (!o.stats.empty()) {
+    if (std::filesystem::path(o.stats).extension() != ".json")
+      throw rt2::Error("--stats " + o.stats + ": the statistics file must end in .json");
+    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
+                                      {"--reference", &o.reference}})
+      if (!other->empty() && same_file(o.stats, *other))
+        throw rt2::Error("--stats " + o.stats + " is the same file as " + flag + " " + *other);
+  }
+  if (!o.output.empty())
+    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--reference", &o.reference}})
+      if (!other->empty() && same_file(o.output, *other))
+        throw rt2::Error("--output " + o.output + " is the same file as " + flag + " " + *other);
+}
+
 void apply_preset(const std::string& name, Options& o) {
   const Preset& p = kPresets.at(name);
   o.render.width = p.width;
@@ -57,42 +82,53 @@ void apply_preset(const std::string& name, Options& o) {
 std::optional<Options> parse_options(int argc, char** argv) {
   CLI::App app{"rt2cpr — render a scene with rt2, a CPU Whitted ray tracer", "rt2cpr"};
   app.footer(kExamples);
-  app.get_formatter()->column_width(30);
+  app.get_formatter()->column_width(34);
+  app.option_defaults()->always_capture_default();
 
   Options o;  // defaults without a preset: 800x600, 1 subpixel, depth 4, the scene's lights
   o.render.width = 800;
   o.render.height = 600;
   o.render.depth = 4;
-  int width = 0, height = 0, subpixels = 0, depth = 0, lights = 0, threads = 0,
-      grain = o.schedule.grain;
+  int width = o.render.width, height = o.render.height, subpixels = o.render.subpixels,
+      depth = o.render.depth, lights = -1, threads = o.schedule.threads, grain = o.schedule.grain;
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", kernel = "specialized",
-              triangle_test = "fast";
+              triangle_test = "fast", positional_scene;
+  bool version = false;
 
-  app.add_option("--scene", o.scene, "scene file (.toml) or mesh (.obj); default: built-in scene");
-  app.add_option("--preset", o.preset, "low | middle | hard | veryhard");
+  app.add_option("scene_file", positional_scene, "the scene, as with --scene")
+      ->default_str("");
+  app.add_option("--scene", o.scene, "scene file (.toml) or mesh (.obj)")
+      ->default_str("built-in scene");
+  app.add_option("--preset", o.preset, "low | middle | hard | veryhard")->default_str("none");
   app.add_option("--width", width, "image width in pixels");
   app.add_option("--height", height, "image height in pixels");
   app.add_option("--subpixels", subpixels, "samples per pixel (>= 1)");
   app.add_option("--pattern", pattern, "subpixel pattern: grid | circle");
   app.add_option("--depth", depth, "recursion depth (0 = no reflection/refraction rays)");
   app.add_option("--min-weight", min_weight, "skip secondary rays weighing <= this [0, 1]");
-  app.add_option("--lights", lights, "total number of lights (scene's first, then extra ones)");
+  app.add_option("--lights", lights, "total number of lights (scene's first, then extra ones)")
+      ->default_str("the scene's own");
   app.add_option("--leaf-size", leaf, "BVH maximum primitives per leaf (>= 1)");
   app.add_option("--split", split, "BVH split: sah | midpoint");
   app.add_flag("--no-bvh", o.no_bvh, "no BVH: test every primitive (one leaf holds all)");
   app.add_option("--backend", backend, "serial | omp | tbb");
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
   app.add_option("--grain", grain, "portions of work per thread (>= 1)");
-  app.add_option("--kernel", kernel, "specialized (default) | generic");
+  app.add_option("--kernel", kernel, "specialized | generic");
   app.add_option("--triangle-test", triangle_test,
-                 "fast (the thesis's, default) | watertight (Woop et al. 2013)");
+                 "fast (the thesis's) | watertight (Woop et al. 2013)");
   app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
-  app.add_option("--output", o.output, "image file: .png .exr .ppm .jpg .tif .hdr");
-  app.add_option("--stats", o.stats, "write parameters, times and ray counts as JSON");
-  app.add_option("--reference", o.reference, "reference image: print RMSE, PSNR, SSIM");
+  app.add_option("--output", o.output,
+                 "image file: .png .jpg .ppm (sRGB, 8-bit) or .exr .hdr .tif (linear float)")
+      ->default_str("none");
+  app.add_option("--stats", o.stats, "write parameters, times and ray counts to FILE.json")
+      ->default_str("none");
+  app.add_option("--reference", o.reference, "reference image: print RMSE, PSNR, SSIM")
+      ->default_str("none");
   app.add_flag("--quiet", o.quiet, "print only errors");
+  app.add_flag("--version", version, "print the version, commit, compiler and ISA, and exit");
 
   try {
     app.parse(argc, argv);
@@ -104,6 +140,17 @@ std::optional<Options> parse_options(int argc, char** argv) {
     std::replace(msg.begin(), msg.end(), '\n', ' ');
     throw rt2::Error(msg + " (see --help)");
   }
+  if (version) {
+    std::cout << rt2::version_line() << "\n";
+    return std::nullopt;
+  }
+  auto given = [&](const char* name) { return app.count(name) > 0; };
+  if (given("scene_file")) {
+    if (given("--scene"))
+      throw rt2::Error("two scenes given: '" + positional_scene + "' and --scene '" + o.scene + "'");
+    o.scene = positional_scene;
+  }
+  check_paths(o, given);
 
   if (!o.preset.empty()) {
     if (!kPresets.count(o.preset))
@@ -111,7 +158,6 @@ std::optional<Options> parse_options(int argc, char** argv) {
     apply_preset(o.preset, o);
   }
   // Explicit options override the preset.
-  auto given = [&](const char* name) { return app.count(name) > 0; };
   if (given("--width")) o.render.width = width;
   if (given("--height")) o.render.height = height;
   if (given("--subpixels")) o.render.subpixels = subpixels;
@@ -144,7 +190,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
   o.schedule.grain = grain;
   if (o.frames < 1 || o.frames > 1'000'000)
     throw rt2::Error("frames must be in [1, 1000000], got " + std::to_string(o.frames));
-  if (o.lights < -1 || o.lights > 1'000'000)
+  if (given("--lights") && (o.lights < 0 || o.lights > 1'000'000))
     throw rt2::Error("lights must be in [0, 1000000], got " + std::to_string(o.lights));
   o.render.validate();
   return o;

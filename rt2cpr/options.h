@@ -26,8 +26,10 @@ struct Options {
   bool quiet = false;
 };
 
-// Parses argv. Returns nullopt when --help was printed (exit 0). Throws rt2::Error with a
-// one-line message for any bad option or value.
+// Parses argv. Returns nullopt when --help or --version was printed (exit 0). Throws
+// rt2::Error with a one-line message for any bad option or value, an empty file name, a
+// statistics file not named .json, and a statistics or image file that names an input (the
+// scene, the reference) or the other output.
 std::optional<Options> parse_options(int argc, char** argv);
 
 }  // namespace rt2cpr

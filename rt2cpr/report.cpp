@@ -13,6 +13,7 @@
 
 #include "rt2/error.h"
 #include "rt2/image_compare.h"
+#include "rt2/version.h"
 
 namespace rt2cpr {
 
@@ -90,6 +91,10 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"bvh_nodes", b.nodes},
       {"bvh_leaves", b.leaves},
       {"bvh_depth", b.max_depth},
+      {"rt2_version", rt2::kVersion},
+      {"git_commit", rt2::git_commit()},
+      {"compiler", rt2::compiler()},
+      {"isa", rt2::build_isa()},
       {"machine", host_name()},
       {"cpu", cpu_model()},
       {"date", utc_now()},
@@ -182,38 +187,6 @@ nlohmann::json Report::json() const {
   j["nonfinite_pixels"] = rays_.nonfinite_pixels;
   j["mrays_per_s"] = med > 0 ? double(rays_.total()) / (med * 1e3) : 0.0;
   return j;
-}
-
-void check_writable_file(const std::string& path) {
-  const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw rt2::Error(path + ": folder '" + dir.string() + "' does not exist");
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw rt2::Error(path + ": folder '" + dir.string() + "' is not writable");
-  if (fs::is_directory(path, ec)) throw rt2::Error(path + ": is a directory");
-}
-
-void write_text_file(const std::string& path, const std::string& text) {
-  check_writable_file(path);
-  const fs::path target(path);
-  const fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" +
-                                               std::to_string(::getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw rt2::Error(path + ": cannot write");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw rt2::Error(path + ": cannot write: " + ec.message());
-  }
 }
 
 }  // namespace rt2cpr

@@ -33,9 +33,4 @@ class Report {
   rt2::RayCounts rays_;
 };
 
-// Fails (rt2::Error) unless `path`'s folder exists and is writable.
-void check_writable_file(const std::string& path);
-// Writes via a temporary file renamed over `path`.
-void write_text_file(const std::string& path, const std::string& text);
-
 }  // namespace rt2cpr

@@ -1,0 +1,42 @@
+// rt2/version.cpp — build identity (see version.h). The build defines RT2_GIT_COMMIT for
+// this file only, so that a new commit recompiles nothing else.
+#include "rt2/version.h"
+
+#ifndef RT2_GIT_COMMIT
+#define RT2_GIT_COMMIT "unknown"
+#endif
+
+namespace rt2 {
+
+const char* git_commit() { return RT2_GIT_COMMIT; }
+
+const char* compiler() {
+#if defined(__clang__)
+  return "clang++ " __clang_version__;
+#elif defined(__GNUC__)
+  return "g++ " __VERSION__;
+#else
+  return "unknown compiler";
+#endif
+}
+
+const char* build_isa() {
+#if defined(MLIB_SCALAR)
+  return "scalar";
+#elif defined(__AVX512F__)
+  return "avx512";
+#elif defined(__AVX2__)
+  return "avx2";
+#elif defined(__SSE4_1__)
+  return "sse4.1";
+#else
+  return "sse2";
+#endif
+}
+
+std::string version_line() {
+  return std::string("rt2 ") + kVersion + " (commit " + git_commit() + ", " + compiler() + ", " +
+         build_isa() + ")";
+}
+
+}  // namespace rt2

@@ -1,0 +1,25 @@
+// rt2/version.h — what this build of rt2 is: version, commit, compiler and instruction set,
+// for `rt2cpr --version` and the statistics file.
+#pragma once
+
+#include <string>
+
+namespace rt2 {
+
+inline constexpr const char* kVersion = "0.2.0";
+
+// The git commit the library was built from ("unknown" outside a checkout; a trailing "+"
+// when the checkout had uncommitted changes).
+const char* git_commit();
+
+// "g++ 12.2.0".
+const char* compiler();
+
+// The instruction set the portable code was compiled for ("sse4.1", "avx2", "native",
+// "scalar").
+const char* build_isa();
+
+// "rt2 0.2.0 (commit 1234abcd, g++ 12.2.0, sse4.1)".
+std::string version_line();
+
+}  // namespace rt2
