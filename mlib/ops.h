@@ -77,16 +77,9 @@ struct Normalize {
   }
 
  private:
-  [[gnu::noinline, gnu::cold]] static f4 rescaled(f4 a) {
-    const f4 m = simd::abs(a);
-    if (!simd::all(simd::cmp_lt(m, simd::set1(__builtin_inff()))))  // false for NaN too
-      return simd::set1(__builtin_nanf(""));
-    const f4 m2 = simd::max(m, simd::shuffle<2, 3, 0, 1>(m));
-    const f4 big = simd::max(m2, simd::shuffle<1, 0, 3, 2>(m2));  // max |lane|, broadcast
-    if (simd::lane0(big) == 0.0f) return a;
-    const f4 s = simd::div(a, big);
-    return simd::div(s, simd::sqrt(simd::dp_bcast(s, s)));
-  }
+  // Out of line (vec4.cpp): compiled once, for the baseline instruction set, so that the
+  // translation units built for wider sets (rt2/isa.h) never hold a copy of their own.
+  [[gnu::cold]] static f4 rescaled(f4 a);
 };
 
 }  // namespace mlib::ops

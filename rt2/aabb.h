@@ -50,7 +50,7 @@ inline constexpr float kSlabPad = 1.0f + 2.0f * (3.0f * 0x1p-24f / (1.0f - 3.0f 
 // (a miss), and for an origin exactly on a slab plane 0 * inf is NaN. Clamping each
 // distance into [-inf, +inf] with maxps / minps (which return the second operand for NaN)
 // turns that NaN into the neutral bound, so a ray lying in a face plane counts as inside.
-inline float slab_entry(const vec4& lo, const vec4& hi, const RayPre& r, float t_min,
+MLIB_INLINE float slab_entry(const vec4& lo, const vec4& hi, const RayPre& r, float t_min,
                         float t_max) {
   const vec4 t0 = (lo - r.org) * r.inv_dir;
   const vec4 t1 = (hi - r.org) * r.inv_dir;

@@ -1,30 +1,22 @@
-// rt2/accel.cpp — compiling a Scene's geometry into BVH leaf order.
+// rt2/accel.cpp — compiling a Scene's geometry into its trees (see accel.h).
 #include "rt2/accel.h"
 
 #include "rt2/scene.h"
 
 namespace rt2 {
 
-Accel Accel::build(const Scene& scene, const BvhConfig& config) {
-  // Gather every bounded primitive with its box, spheres first then mesh triangles.
+namespace {
+
+// The triangle tree: build, then lay the triangles out in leaf order and collapse.
+void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
   struct Source {
     const Mesh* mesh;
-    std::uint32_t face;  // or sphere index when mesh == nullptr
+    std::uint32_t face;
   };
   std::vector<Source> sources;
   std::vector<Aabb> boxes;
-  const std::size_t n = scene.spheres.size() + scene.triangle_count();
-  sources.reserve(n);
-  boxes.reserve(n);
-  for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
-    const Sphere& s = scene.spheres[i];
-    const vec4 r(s.radius, s.radius, s.radius);
-    Aabb b;
-    b.grow(s.center - r);
-    b.grow(s.center + r);
-    sources.push_back({nullptr, i});
-    boxes.push_back(b);
-  }
+  sources.reserve(scene.triangle_count());
+  boxes.reserve(scene.triangle_count());
   bool any_normals = false;
   for (const Mesh& m : scene.meshes) {
     any_normals |= !m.normals.empty() && !m.faces.empty();
@@ -35,36 +27,67 @@ Accel Accel::build(const Scene& scene, const BvhConfig& config) {
       boxes.push_back(b);
     }
   }
-
-  Accel acc;
-  acc.bvh = build_bvh(boxes, config);
-  acc.refs.reserve(n);
-  for (std::uint32_t k : acc.bvh.order) {
-    const Source& src = sources[k];
-    if (!src.mesh) {
-      acc.refs.push_back(kSphereTag | static_cast<std::uint32_t>(acc.spheres.size()));
-      acc.spheres.push_back(scene.spheres[src.face]);
-      acc.sphere_materials.push_back(scene.sphere_materials[src.face]);
-      continue;
-    }
-    const Mesh& m = *src.mesh;
-    const auto& f = m.faces[src.face];
-    acc.refs.push_back(kTriangleTag | static_cast<std::uint32_t>(acc.tris.size()));
+  const Bvh bvh = build_bvh(boxes, config);
+  acc.stats = bvh.stats;
+  acc.tris.reserve(bvh.order.size());
+  acc.tri_materials.reserve(bvh.order.size());
+  for (std::uint32_t k : bvh.order) {
+    const Mesh& m = *sources[k].mesh;
+    const auto& f = m.faces[sources[k].face];
     const Triangle tri = Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
     acc.tris.push_back(tri);
-    acc.tri_materials.push_back(m.face_materials[src.face]);
-    if (any_normals) {
-      if (m.normals.empty()) {
-        const vec4 nf = normalize(tri.n);
-        acc.tri_normals.push_back({nf, nf, nf});
-      } else {
-        acc.tri_normals.push_back({m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]});
-      }
+    acc.tri_materials.push_back(m.face_materials[sources[k].face]);
+    if (!any_normals) continue;
+    if (m.normals.empty()) {
+      const vec4 nf = normalize(tri.n);
+      acc.tri_normals.push_back({nf, nf, nf});
+    } else {
+      acc.tri_normals.push_back({m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]});
     }
   }
+  if (bvh_width(acc.isa) == 8) {
+    acc.bvh8 = collapse_bvh<8>(bvh, acc.tris, acc.blocks);
+    acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh8.nodes.size());
+  } else {
+    acc.bvh4 = collapse_bvh<4>(bvh, acc.tris, acc.blocks);
+    acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh4.nodes.size());
+  }
+  acc.blocks.shrink_to_fit();
+}
+
+void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
+  std::vector<Aabb> boxes;
+  boxes.reserve(scene.spheres.size());
+  for (const Sphere& s : scene.spheres) {
+    const vec4 r(s.radius, s.radius, s.radius);
+    Aabb b;
+    b.grow(s.center - r);
+    b.grow(s.center + r);
+    boxes.push_back(b);
+  }
+  acc.sphere_bvh = build_bvh(boxes, config);
+  for (std::uint32_t k : acc.sphere_bvh.order) {
+    acc.spheres.push_back(scene.spheres[k]);
+    acc.sphere_materials.push_back(scene.sphere_materials[k]);
+  }
+}
+
+}  // namespace
+
+Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
+  Accel acc;
+  acc.isa = isa;
+  build_triangles(scene, config, acc);
+  build_spheres(scene, config, acc);
   acc.planes = scene.planes;
   acc.plane_materials = scene.plane_materials;
   return acc;
+}
+
+std::size_t Accel::bvh_bytes() const {
+  return bvh4.nodes.size() * sizeof(WideNode<4>) + bvh8.nodes.size() * sizeof(WideNode<8>) +
+         blocks.size() * sizeof(TriangleBlock) + sphere_bvh.nodes.size() * sizeof(BvhNode) +
+         sphere_bvh.order.size() * sizeof(std::uint32_t);
 }
 
 }  // namespace rt2

@@ -24,7 +24,7 @@ class Camera {
                         float fov_degrees);
 
   // The primary ray through continuous pixel coordinates (px, py) of a width x height image.
-  Ray ray(float px, float py, int width, int height) const {
+  MLIB_INLINE Ray ray(float px, float py, int width, int height) const {
     const float x = (2.0f * px / float(width) - 1.0f) * (float(width) / float(height)) * tan_half_;
     const float y = (1.0f - 2.0f * py / float(height)) * tan_half_;
     return Ray(position_, normalize(forward_ + right_ * x + up_ * y));

@@ -24,6 +24,8 @@ struct Material {
   float checker_scale = 0.0f;
 
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
+  // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.
+  vec4 diffuse_at(const vec4& p) const;
 };
 
 struct Light {

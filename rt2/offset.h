@@ -22,7 +22,7 @@
 
 namespace rt2 {
 
-inline vec4 offset_ray_origin(const vec4& p, const vec4& n, float scale = 1.0f) {
+MLIB_INLINE vec4 offset_ray_origin(const vec4& p, const vec4& n, float scale = 1.0f) {
   const float origin = scale / 32.0f;
   const float float_scale = scale / 65536.0f;
   constexpr float kIntScale = 256.0f;

@@ -1,11 +1,10 @@
 // rt2/render.cpp — settings validation and kernel selection.
 #include "rt2/render.h"
 
-#include <array>
 #include <cmath>
-#include <utility>
 
 #include "rt2/error.h"
+#include "rt2/isa_kernels.h"
 
 namespace rt2 {
 
@@ -22,29 +21,14 @@ void RenderSettings::validate() const {
     fail("min-weight must be in [0, 1], got " + std::to_string(min_weight));
 }
 
-namespace {
-
-// Entry i is the kernel for feature set i; sets that normalize_features maps elsewhere
-// share that set's kernel.
-template <std::size_t... I>
-constexpr std::array<Renderer::Kernel, sizeof...(I)> kernel_table(std::index_sequence<I...>) {
-  return {&render_rows_kernel<normalize_features(I)>...};
-}
-
-constexpr auto kKernels = kernel_table(std::make_index_sequence<kFeatureCombinations>());
-
-}  // namespace
-
 Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderSettings& settings)
     : scene_(scene), accel_(accel), settings_(settings) {
   settings_.validate();
   offsets_ = subpixel_offsets(settings_.subpixels, settings_.pattern);
   scene_features_ = scene.features();
   offset_scale_ = scene.size();
-  const unsigned mode = settings_.watertight ? unsigned(kWatertight) : 0u;
-  kernel_features_ =
-      normalize_features((settings_.generic_kernel ? kAllFeatures : scene_features_) | mode);
-  kernel_ = kKernels[kernel_features_];
+  isa_ = accel.isa;
+  kernel_ = isa_kernels(isa_).render_rows[settings_.watertight ? 1 : 0];
 }
 
 }  // namespace rt2

@@ -1,11 +1,10 @@
-// rt2/render.h — rendering rows of a frame with the kernel specialised for the scene.
+// rt2/render.h — rendering rows of a frame.
 //
 // The Renderer is built once per frame setting: it validates the settings, notes the
-// scene's features, precomputes the subpixel offsets and picks the kernel — a function
-// template over the feature bits (rt2/tracer.h), instantiated for the 96 combinations that
-// differ (rt2/features.h) — so the per-ray code contains exactly what the scene needs and
-// no feature tests on data it does not have. `render_rows` is the whole per-pixel loop; it
-// knows no scheduler (rt2/schedule.h splits a frame and calls it from any thread).
+// scene's features, precomputes the subpixel offsets and picks the kernel (rt2/tracer.h):
+// the one compiled for the instruction set the Accel was built for (rt2/isa.h) and the
+// chosen triangle test. `render_rows` is the whole per-pixel loop; it knows no scheduler
+// (rt2/schedule.h splits a frame and calls it from any thread).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +24,6 @@ struct RenderSettings {
   Pattern pattern = Pattern::grid;
   int depth = 1;                  // recursion depth: 0 = no reflection/refraction rays
   float min_weight = 0.01f;       // a secondary ray whose weight is <= this is not traced
-  bool generic_kernel = false;    // true: the all-features kernel, decided per material
   bool watertight = false;        // triangles: the watertight test instead of the fast one
 
   // Throws rt2::Error for width/height < 1 or > 65535, subpixels < 1 or > 65536,
@@ -66,11 +64,12 @@ class Renderer {
   const Accel& accel() const { return accel_; }
   const RenderSettings& settings() const { return settings_; }
   const std::vector<SubpixelOffset>& offsets() const { return offsets_; }
-  // The features of the scene, and those the chosen kernel was compiled for.
+  // The features of the scene (reported; the kernel decides them per material).
   unsigned scene_features() const { return scene_features_; }
   // The scene's size, for offsetting secondary-ray origins (offset.h).
   float offset_scale() const { return offset_scale_; }
-  unsigned kernel_features() const { return kernel_features_; }
+  // The instruction set the kernel was compiled for.
+  Isa isa() const { return isa_; }
 
   using Kernel = void (*)(const Renderer&, int, int, Image&, RayCounts&);
 
@@ -80,13 +79,9 @@ class Renderer {
   RenderSettings settings_;
   std::vector<SubpixelOffset> offsets_;
   unsigned scene_features_;
-  unsigned kernel_features_;
+  Isa isa_;
   float offset_scale_;
   Kernel kernel_;
 };
-
-// The kernel for feature set F (defined in tracer.h, instantiated in kernels.cpp).
-template <unsigned F>
-void render_rows_kernel(const Renderer& r, int y0, int y1, Image& image, RayCounts& counts);
 
 }  // namespace rt2

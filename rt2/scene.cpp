@@ -170,10 +170,10 @@ void set_light_count(Scene& scene, std::size_t total) {
 }
 
 std::string feature_names(unsigned f) {
-  static const char* names[] = {"reflection", "refraction", "specular", "spheres",
-                                "planes",     "triangles",  "watertight"};
+  static const char* names[] = {"reflection", "refraction", "specular",
+                                "spheres",    "planes",     "triangles"};
   std::string s;
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < 6; ++i) {
     if (!(f & (1u << i))) continue;
     if (!s.empty()) s += '+';
     s += names[i];

@@ -1,7 +1,10 @@
 // rt2/tracer.h — the per-pixel kernel: Whitted ray tracing with Phong shading (thesis 3.1,
-// 3.2), as a template over the scene's feature bits (rt2/features.h).
+// 3.2), as a template over the triangle test.
 //
-// Included only by kernels.cpp (which instantiates it) and by tests. Recursion is
+// Compiled per instruction set (rt2/isa.h) by isa_kernels.cpp: the code lives in
+// rt2::RT2_ISA. Materials decide reflection, refraction and highlights at run time (a
+// kernel compiled per combination of scene features measured about 1 % faster, inside the
+// noise, so it was dropped). Recursion is
 // iterative: a pixel's rays form a tree (reflection and refraction split it), walked
 // depth-first with an explicit stack whose size grows with the recursion depth, so a
 // depth of 10,000 cannot overflow the thread's stack. A ray's contribution is its weight
@@ -14,9 +17,11 @@
 #include <vector>
 
 #include "rt2/offset.h"
+#include "rt2/optics.h"
+#include "rt2/query.h"
 #include "rt2/render.h"
 
-namespace rt2 {
+namespace rt2::RT2_ISA {
 namespace detail {
 
 struct Task {
@@ -37,7 +42,6 @@ struct SurfacePoint {
   std::uint32_t material;
 };
 
-template <unsigned F>
 inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
                                float offset_scale) {
   SurfacePoint s;
@@ -74,24 +78,16 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
   return s;
 }
 
-// Kd at p: the material's diffuse colour, or its checker's second colour.
-inline vec4 diffuse_at(const Material& m, const vec4& p) {
-  if (!(m.checker_scale > 0.0f)) return m.diffuse;
-  const float inv = 1.0f / m.checker_scale;
-  const auto cell = [&](int a) { return static_cast<long long>(std::floor(p[a] * inv)); };
-  return ((cell(0) + cell(1) + cell(2)) & 1) ? m.diffuse2 : m.diffuse;
-}
-
 // I_local = Ka I_amb + sum over lights that reach p of Kd I (L·N) + Ks I (R·V)^n, with I
 // attenuated by transparent occluders (thesis 3.2; SPEC "Shading").
-template <unsigned F>
+template <bool Watertight>
 inline vec4 shade_local(const Renderer& r, const Ray& ray, const SurfacePoint& s,
                         RayCounts& counts) {
   const Scene& sc = r.scene();
   const Material& m = sc.materials[s.material];
   vec4 color = m.ambient * sc.ambient;
   if (sc.lights.empty()) return color;
-  const vec4 kd = diffuse_at(m, s.p + sc.origin);  // textures live in world coordinates
+  const vec4 kd = m.diffuse_at(s.p + sc.origin);  // textures live in world coordinates
   const vec4& origin = s.above;
   const vec4 view = -ray.dir;
   for (const Light& light : sc.lights) {
@@ -102,35 +98,21 @@ inline vec4 shade_local(const Renderer& r, const Ray& ray, const SurfacePoint& s
     const float n_dot_l = dot(s.ns, l);
     if (!(n_dot_l > 0.0f)) continue;
     ++counts.shadow;
-    const float passed = transmittance<F>(r.accel(), sc.materials, Ray(origin, l), 0.0f, dist);
+    const float passed =
+        transmittance<Watertight>(r.accel(), sc.materials, Ray(origin, l), 0.0f, dist);
     if (passed == 0.0f) continue;
     const vec4 li = light.radiance() * passed;
     color += kd * li * n_dot_l;
-    if constexpr (has_feature<F, kSpecular>) {
-      if (m.has_specular()) {
-        const float r_dot_v = dot(2.0f * n_dot_l * s.ns - l, view);  // R = reflect(-L, N)
-        if (r_dot_v > 0.0f) color += m.specular * li * std::pow(r_dot_v, m.shininess);
-      }
+    if (m.has_specular()) {
+      const float r_dot_v = dot(2.0f * n_dot_l * s.ns - l, view);  // R = reflect(-L, N)
+      if (r_dot_v > 0.0f) color += m.specular * li * std::pow(r_dot_v, m.shininess);
     }
   }
   return color;
 }
 
-// R = I - 2 N (N·I) (thesis formula 1).
-inline vec4 reflect(const vec4& i, const vec4& n) { return i - 2.0f * n * dot(n, i); }
-
-// T = eta I - (cos a + eta (N·I)) N with cos a = sqrt(1 - eta^2 (1 - (N·I)^2)), N facing
-// the incoming ray (N·I < 0). Returns false on total internal reflection (negative root).
-inline bool refract(const vec4& i, const vec4& n, float eta, vec4& t) {
-  const float n_dot_i = dot(n, i);
-  const float k = 1.0f - eta * eta * (1.0f - n_dot_i * n_dot_i);
-  if (k < 0.0f) return false;
-  t = normalize(eta * i - (std::sqrt(k) + eta * n_dot_i) * n);
-  return true;
-}
-
 // The colour seen along `primary`: the sum over the ray tree of weight x local colour.
-template <unsigned F>
+template <bool Watertight>
 inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stack,
                   RayCounts& counts) {
   const RenderSettings& st = r.settings();
@@ -143,18 +125,18 @@ inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stac
     stack.pop_back();
     counts.reflection += task.kind == RayKind::reflection;
     counts.refraction += task.kind == RayKind::refraction;
-    const Hit h = closest_hit<F>(r.accel(), task.ray, 0.0f, kInfinity);
+    const Hit h = closest_hit<Watertight>(r.accel(), task.ray, 0.0f, kInfinity);
     if (!h.found()) {
       color += task.weight * sc.background;
       continue;
     }
-    const SurfacePoint s = surface_at<F>(r.accel(), task.ray, h, r.offset_scale());
-    color += task.weight * shade_local<F>(r, task.ray, s, counts);
+    const SurfacePoint s = surface_at(r.accel(), task.ray, h, r.offset_scale());
+    color += task.weight * shade_local<Watertight>(r, task.ray, s, counts);
     if (task.depth >= st.depth) continue;
     const Material& m = sc.materials[s.material];
-    if constexpr (has_feature<F, kRefraction>) {
+    if (m.transparency > 0.0f) {
       const float w = task.weight * m.transparency;
-      if (m.transparency > 0.0f && w > st.min_weight) {
+      if (w > st.min_weight) {
         const float eta = s.entering ? 1.0f / m.ior : m.ior;
         vec4 t;
         if (refract(task.ray.dir, s.ns, eta, t))
@@ -165,9 +147,9 @@ inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stac
               {Ray(s.above, reflect(task.ray.dir, s.ns)), w, task.depth + 1, RayKind::reflection});
       }
     }
-    if constexpr (has_feature<F, kReflection>) {
+    if (m.reflectivity > 0.0f) {
       const float w = task.weight * m.reflectivity;
-      if (m.reflectivity > 0.0f && w > st.min_weight)
+      if (w > st.min_weight)
         stack.push_back(
             {Ray(s.above, reflect(task.ray.dir, s.ns)), w, task.depth + 1, RayKind::reflection});
     }
@@ -177,7 +159,7 @@ inline vec4 trace(const Renderer& r, const Ray& primary, std::vector<Task>& stac
 
 }  // namespace detail
 
-template <unsigned F>
+template <bool Watertight>
 void render_rows_kernel(const Renderer& r, int y0, int y1, Image& image, RayCounts& counts) {
   const RenderSettings& st = r.settings();
   const Camera& cam = r.scene().camera;
@@ -193,7 +175,7 @@ void render_rows_kernel(const Renderer& r, int y0, int y1, Image& image, RayCoun
       // plain running sum would lose ~sqrt(N) ulps.
       vec4 sum, carry;
       for (const SubpixelOffset& o : offsets) {
-        const vec4 c = detail::trace<F>(
+        const vec4 c = detail::trace<Watertight>(
             r, cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height), stack, local);
         const vec4 y_ = c - carry;
         const vec4 t = sum + y_;
@@ -214,4 +196,4 @@ void render_rows_kernel(const Renderer& r, int y0, int y1, Image& image, RayCoun
   counts += local;
 }
 
-}  // namespace rt2
+}  // namespace rt2::RT2_ISA

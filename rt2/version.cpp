@@ -2,6 +2,8 @@
 // this file only, so that a new commit recompiles nothing else.
 #include "rt2/version.h"
 
+#include "rt2/isa.h"
+
 #ifndef RT2_GIT_COMMIT
 #define RT2_GIT_COMMIT "unknown"
 #endif
@@ -35,8 +37,11 @@ const char* build_isa() {
 }
 
 std::string version_line() {
-  return std::string("rt2 ") + kVersion + " (commit " + git_commit() + ", " + compiler() + ", " +
-         build_isa() + ")";
+  std::string kernels;
+  for (Isa isa : built_isas()) kernels += std::string(kernels.empty() ? "" : " ") + isa_name(isa);
+  return std::string("rt2 ") + kVersion + " (commit " + git_commit() + ", " + compiler() +
+         ", baseline " + build_isa() + ", ray kernels " + kernels + ", this CPU runs " +
+         isa_name(best_isa()) + ")";
 }
 
 }  // namespace rt2

@@ -15,11 +15,12 @@ const char* git_commit();
 // "g++ 12.2.0".
 const char* compiler();
 
-// The instruction set the portable code was compiled for ("sse4.1", "avx2", "native",
-// "scalar").
+// The instruction set the portable code was compiled for ("sse4.1", "avx2", "avx512",
+// "scalar"); the ray kernels come in several (rt2/isa.h).
 const char* build_isa();
 
-// "rt2 0.2.0 (commit 1234abcd, g++ 12.2.0, sse4.1)".
+// "rt2 0.2.0 (commit 1234abcd, g++ 12.2.0, baseline sse4.1, ray kernels sse41 avx2 avx512,
+// this CPU runs avx512)".
 std::string version_line();
 
 }  // namespace rt2

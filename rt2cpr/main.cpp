@@ -54,10 +54,12 @@ int run(const Options& o) {
   rt2::recenter_on_camera(scene);  // full float precision where the pixels come from
   const double load_ms = ms_since(t0);
 
-  const rt2::Accel accel = rt2::Accel::build(scene, o.bvh);
+  t0 = Clock::now();
+  const rt2::Accel accel = rt2::Accel::build(scene, o.bvh, o.isa);
+  const double build_ms = ms_since(t0);
   const rt2::Renderer renderer(scene, accel, o.render);
 
-  Report report(o, scene, accel, renderer, load_ms);
+  Report report(o, scene, accel, renderer, load_ms, build_ms);
   if (!o.quiet) report.print_setup();
 
   rt2::Image image;

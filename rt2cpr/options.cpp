@@ -93,8 +93,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
       depth = o.render.depth, lights = -1, threads = o.schedule.threads, grain = o.schedule.grain;
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
-  std::string pattern = "grid", split = "sah", backend = "omp", kernel = "specialized",
-              triangle_test = "fast", positional_scene;
+  std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
+              isa = rt2::isa_name(o.isa), positional_scene;
   bool version = false;
 
   app.add_option("scene_file", positional_scene, "the scene, as with --scene")
@@ -116,7 +116,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--backend", backend, "serial | omp | tbb");
   app.add_option("--threads", threads, "threads (0 = all hardware threads)");
   app.add_option("--grain", grain, "portions of work per thread (>= 1)");
-  app.add_option("--kernel", kernel, "specialized | generic");
+  app.add_option("--isa", isa, "ray kernels' instruction set: sse41 | avx2 | avx512 (default: "
+                              "the widest this CPU runs)");
   app.add_option("--triangle-test", triangle_test,
                  "fast (the thesis's) | watertight (Woop et al. 2013)");
   app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
@@ -165,9 +166,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
   if (given("--lights")) o.lights = lights;
   o.render.min_weight = min_weight;
   o.render.pattern = rt2::parse_pattern(pattern);
-  if (kernel != "specialized" && kernel != "generic")
-    throw rt2::Error("unknown kernel '" + kernel + "' (expected specialized or generic)");
-  o.render.generic_kernel = kernel == "generic";
+  o.isa = rt2::parse_isa(isa);
   if (triangle_test != "fast" && triangle_test != "watertight")
     throw rt2::Error("unknown triangle test '" + triangle_test + "' (expected fast or watertight)");
   o.render.watertight = triangle_test == "watertight";

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "rt2/bvh/node.h"
+#include "rt2/isa.h"
 #include "rt2/render.h"
 #include "rt2/schedule.h"
 
@@ -17,6 +18,7 @@ struct Options {
   rt2::RenderSettings render;
   int lights = -1;     // total light count; -1: the scene's own lights
   rt2::BvhConfig bvh;
+  rt2::Isa isa = rt2::best_isa();  // the ray kernels' instruction set (--isa)
   bool no_bvh = false;  // one leaf holding every primitive (brute force)
   rt2::Schedule schedule;
   int frames = 1;

@@ -58,9 +58,9 @@ std::string host_name() {
 }  // namespace
 
 Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& accel,
-               const rt2::Renderer& renderer, double load_ms) {
+               const rt2::Renderer& renderer, double load_ms, double build_ms) {
   const rt2::RenderSettings& st = renderer.settings();
-  const rt2::BvhStats& b = accel.bvh.stats;
+  const rt2::BvhStats& b = accel.stats;
   j_ = {
       {"scene", o.scene.empty() ? "built-in" : o.scene},
       {"preset", o.preset},
@@ -78,23 +78,24 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"threads", rt2::effective_threads(o.schedule)},
       {"grain", o.schedule.grain},
       {"frames", o.frames},
-      {"kernel", st.generic_kernel ? "generic" : "specialized"},
+      {"isa", rt2::isa_name(renderer.isa())},
       {"triangle_test", st.watertight ? "watertight" : "fast"},
       {"features", rt2::feature_names(renderer.scene_features())},
-      {"kernel_features", rt2::feature_names(renderer.kernel_features())},
       {"triangles", accel.tris.size()},
       {"spheres", accel.spheres.size()},
       {"planes", accel.planes.size()},
       {"degenerate_triangles", scene.degenerate_triangles},
       {"scene_load_ms", load_ms},
-      {"bvh_build_ms", b.build_ms},
-      {"bvh_nodes", b.nodes},
+      {"bvh_build_ms", build_ms},
+      {"bvh_width", rt2::bvh_width(accel.isa)},
+      {"bvh_nodes", accel.wide_nodes},
       {"bvh_leaves", b.leaves},
       {"bvh_depth", b.max_depth},
+      {"bvh_bytes", accel.bvh_bytes()},
       {"rt2_version", rt2::kVersion},
       {"git_commit", rt2::git_commit()},
       {"compiler", rt2::compiler()},
-      {"isa", rt2::build_isa()},
+      {"baseline_isa", rt2::build_isa()},
       {"machine", host_name()},
       {"cpu", cpu_model()},
       {"date", utc_now()},
@@ -132,15 +133,17 @@ void Report::print_setup() const {
               j_["scene_load_ms"].get<double>());
   if (j_["degenerate_triangles"].get<std::size_t>() > 0)
     std::printf("dropped %zu degenerate triangles\n", j_["degenerate_triangles"].get<std::size_t>());
-  std::printf("bvh %s, leaf size %u: %u nodes, %u leaves, depth %u, built in %.1f ms\n",
+  std::printf("bvh %s, leaf size %u, %d-wide: %u nodes, %u leaves, depth %u, %.1f MB, built in "
+              "%.1f ms\n",
               j_["split"].get<std::string>().c_str(), j_["leaf_size"].get<unsigned>(),
-              j_["bvh_nodes"].get<unsigned>(), j_["bvh_leaves"].get<unsigned>(),
-              j_["bvh_depth"].get<unsigned>(), j_["bvh_build_ms"].get<double>());
-  std::printf("%dx%d, %d subpixels (%s), depth %d, min-weight %g, %s kernel; %s, %d threads, "
+              j_["bvh_width"].get<int>(), j_["bvh_nodes"].get<unsigned>(),
+              j_["bvh_leaves"].get<unsigned>(), j_["bvh_depth"].get<unsigned>(),
+              double(j_["bvh_bytes"].get<std::size_t>()) / 1e6, j_["bvh_build_ms"].get<double>());
+  std::printf("%dx%d, %d subpixels (%s), depth %d, min-weight %g, %s kernels; %s, %d threads, "
               "grain %d\n",
               j_["width"].get<int>(), j_["height"].get<int>(), j_["subpixels"].get<int>(),
               j_["pattern"].get<std::string>().c_str(), j_["depth"].get<int>(),
-              j_["min_weight"].get<double>(), j_["kernel"].get<std::string>().c_str(),
+              j_["min_weight"].get<double>(), j_["isa"].get<std::string>().c_str(),
               j_["backend"].get<std::string>().c_str(), j_["threads"].get<int>(),
               j_["grain"].get<int>());
 }

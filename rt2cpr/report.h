@@ -18,7 +18,7 @@ namespace rt2cpr {
 class Report {
  public:
   Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& accel,
-         const rt2::Renderer& renderer, double load_ms);
+         const rt2::Renderer& renderer, double load_ms, double build_ms);
   void add_frame(const rt2::FrameResult& r);
   // Image error of the last frame against a reference of the same size (RMSE, PSNR, SSIM).
   void compare(const rt2::Image& image, const rt2::Image& reference);

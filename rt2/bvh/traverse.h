@@ -18,7 +18,7 @@
 
 namespace rt2 {
 
-inline float node_entry(const BvhNode& n, const RayPre& r, float t_min, float t_max) {
+MLIB_INLINE float node_entry(const BvhNode& n, const RayPre& r, float t_min, float t_max) {
   return slab_entry(mlib::load_xyz(n.lo), mlib::load_xyz(n.hi), r, t_min, t_max);
 }
 

@@ -12,7 +12,7 @@ struct Plane {
 
 // t = -(P·N + D) / (Dir·N). A ray parallel to the plane (Dir·N = 0) gives ±inf or NaN and
 // fails the interval test, so it misses — no branch needed.
-inline bool intersect(const Plane& pl, const Ray& r, float t_min, float t_max, float& t) {
+MLIB_INLINE bool intersect(const Plane& pl, const Ray& r, float t_min, float t_max, float& t) {
   const float denom = dot(r.dir, pl.n);
   t = -(float(dot(r.org, pl.n)) + pl.d) / denom;
   return t > t_min && t < t_max;

@@ -1,13 +1,16 @@
-// The BVH: structure invariants of the builder, and closest / any hit through the
-// traverser against brute force over every primitive.
+// The BVH: structure invariants of the binary builder and of the wide tree collapsed from
+// it, and closest / any hit through the wide traversal, for every instruction set and both
+// triangle tests, against brute force over every primitive.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <tuple>
 
 #include "rt2/accel.h"
 #include "rt2/builtin_scene.h"
 #include "rt2/error.h"
+#include "rt2/trace.h"
 #include "tests/rt2/test_util.h"
 
 namespace rt2 {
@@ -15,20 +18,32 @@ namespace {
 
 using test::kSampleScale;
 
-constexpr unsigned kAll = kAllFeatures;
-
-// Checks closest_hit == brute force on `rays`; returns the number of rays that hit.
-std::size_t expect_closest_equals_brute_force(const Accel& acc, const std::vector<Ray>& rays) {
-  std::size_t hits = 0, mismatches = 0;
+// Checks, for every runnable ISA and both triangle tests, that the wide BVH's closest hit
+// is brute force's: the same t, u, v and primitive, bit for bit (each primitive's values do
+// not depend on the visiting order, and ties go to the smaller index in both). Returns the
+// number of rays that hit.
+std::size_t expect_closest_equals_brute_force(const Scene& scene, const BvhConfig& config,
+                                              const std::vector<Ray>& rays) {
+  std::size_t hits = 0;
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, config, isa);
+    for (bool watertight : {false, true}) {
+      std::vector<Hit> bvh(rays.size());
+      const std::vector<float> t_max(rays.size(), kInfinity);
+      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), bvh.data());
+      std::size_t mismatches = 0;
+      hits = 0;
 #pragma omp parallel for reduction(+ : hits, mismatches) schedule(dynamic, 256)
-  for (std::size_t i = 0; i < rays.size(); ++i) {
-    const Hit bvh = closest_hit<kAll>(acc, rays[i], 0.0f, kInfinity);
-    const Hit ref = test::brute_force(acc, rays[i], 0.0f, kInfinity);
-    hits += ref.found();
-    // Same distance exactly: each primitive's t does not depend on the visiting order.
-    mismatches += !(bvh.t == ref.t && bvh.found() == ref.found());
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        const Hit ref = test::brute_force(acc, rays[i], 0.0f, kInfinity, watertight);
+        hits += ref.found();
+        const Hit& b = bvh[i];
+        mismatches += !(b.t == ref.t && b.prim == ref.prim &&
+                        (prim_tag(b.prim) != kTriangleTag || (b.u == ref.u && b.v == ref.v)));
+      }
+      EXPECT_EQ(mismatches, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast");
+    }
   }
-  EXPECT_EQ(mismatches, 0u);
   return hits;
 }
 
@@ -38,9 +53,9 @@ TEST_P(BvhVsBruteForce, ClosestHitEqualsBruteForceOnRandomSoup) {
   const auto [leaf, split] = GetParam();
   const Scene scene = test::geometry_scene({test::random_soup(300, 0.4f, 7 + leaf)},
                                            {Sphere{vec4(0.3f, 0.2f, 0.1f), 0.2f}});
-  const Accel acc = Accel::build(scene, BvhConfig{leaf, split, 16});
-  const auto rays = test::random_rays(acc, 100000 / kSampleScale, 11 + leaf);
-  const std::size_t hits = expect_closest_equals_brute_force(acc, rays);
+  const BvhConfig config{leaf, split, 16};
+  const auto rays = test::random_rays(Accel::build(scene, config), 50000 / kSampleScale, 11 + leaf);
+  const std::size_t hits = expect_closest_equals_brute_force(scene, config, rays);
   EXPECT_GT(hits, rays.size() / 3);  // the rays do exercise hits
 }
 
@@ -60,29 +75,130 @@ TEST(Bvh, ClosestHitEqualsBruteForceOnTheChairMesh) {
   scene.planes.clear();
   scene.plane_materials.clear();
   for (Split split : {Split::sah, Split::midpoint}) {
-    const Accel acc = Accel::build(scene, BvhConfig{4, split, 16});
-    const auto rays = test::random_rays(acc, 100000 / (2 * kSampleScale), 5, 1.5f);
-    EXPECT_GT(expect_closest_equals_brute_force(acc, rays), rays.size() / 3);
+    const BvhConfig config{4, split, 16};
+    const auto rays = test::random_rays(Accel::build(scene, config), 20000 / kSampleScale, 5, 1.5f);
+    EXPECT_GT(expect_closest_equals_brute_force(scene, config, rays), rays.size() / 3);
   }
 }
 
 TEST(Bvh, AnyHitAgreesWithClosestHitOnSegments) {
   const Scene scene = test::geometry_scene({test::random_soup(500, 0.3f, 3)},
                                            {Sphere{vec4(0, 0, 0), 0.3f}});
-  const Accel acc = Accel::build(scene, BvhConfig{4, Split::sah, 16});
-  const auto rays = test::random_rays(acc, 50000 / kSampleScale, 4);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> len(0.0f, 4.0f);
-  const std::vector<Material> opaque(1);
-  std::size_t blocked = 0;
-  for (const Ray& r : rays) {
-    const float t_max = len(rng);
-    const bool occluded = transmittance<kAll & ~kRefraction>(acc, opaque, r, 0.0f, t_max) == 0.0f;
-    const bool hit = closest_hit<kAll>(acc, r, 0.0f, t_max).found();
-    ASSERT_EQ(occluded, hit);
-    blocked += occluded;
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{4, Split::sah, 16}, isa);
+    const auto rays = test::random_rays(acc, 50000 / kSampleScale, 4);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> len(0.0f, 4.0f);
+    std::vector<float> t_max(rays.size());
+    for (float& t : t_max) t = len(rng);
+    for (bool watertight : {false, true}) {
+      std::vector<std::uint8_t> occluded(rays.size());
+      std::vector<Hit> hits(rays.size());
+      trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
+      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
+      std::size_t blocked = 0, disagree = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        disagree += (occluded[i] != 0) != hits[i].found();
+        blocked += occluded[i];
+      }
+      EXPECT_EQ(disagree, 0u) << isa_name(isa);
+      EXPECT_GT(blocked, rays.size() / 10);
+    }
   }
-  EXPECT_GT(blocked, rays.size() / 10);
+}
+
+TEST(Bvh, EveryIsaFindsTheSameHitsBitForBit) {
+  Scene scene = make_default_scene();
+  const auto rays = test::random_rays(Accel::build(scene, BvhConfig{}), 20000 / kSampleScale, 8, 2.0f);
+  for (bool watertight : {false, true}) {
+    std::vector<Hit> first;
+    for (Isa isa : test::runnable_isas()) {
+      const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+      std::vector<Hit> hits(rays.size());
+      const std::vector<float> t_max(rays.size(), kInfinity);
+      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
+      if (first.empty()) {
+        first = hits;
+        continue;
+      }
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i)
+        differ += std::memcmp(&hits[i], &first[i], sizeof(Hit)) != 0;
+      EXPECT_EQ(differ, 0u) << isa_name(isa);
+    }
+  }
+}
+
+// The wide tree holds every triangle exactly once, in blocks of at most four whose leaf
+// runs end with a block marked last; each child's box is inside its node's box; unused
+// slots hold the empty box; no node has more than its width of children.
+template <int N>
+void expect_wide_tree_is_well_formed(const Accel& acc, std::uint32_t max_leaf) {
+  const WideBvh<N>& w = acc.wide<N>();
+  std::vector<int> seen(acc.tris.size(), 0);
+  std::uint32_t leaves = 0;
+  const auto visit_leaf = [&](std::uint32_t first) {
+    ++leaves;
+    std::uint32_t count = 0;
+    for (std::uint32_t b = first;; ++b) {
+      const TriangleBlock& block = acc.blocks[b];
+      for (int l = 0; l < 4; ++l)
+        if (block.prim_of(l) != TriangleBlock::kNoPrim) {
+          ++seen[block.prim_of(l)];
+          ++count;
+        }
+      if (block.last()) break;
+    }
+    EXPECT_LE(count, max_leaf);
+  };
+  if (w.root & kLeaf) {
+    visit_leaf(w.root & ~kLeaf);
+  } else {
+    for (const WideNode<N>& node : w.nodes)
+      for (int i = 0; i < N; ++i) {
+        const bool empty = node.bounds[0][i] > node.bounds[1][i];
+        if (empty) continue;
+        if (node.child[i] & kLeaf) {
+          visit_leaf(node.child[i] & ~kLeaf);
+          continue;
+        }
+        const WideNode<N>& kid = w.nodes[node.child[i]];
+        for (int k = 0; k < N; ++k) {
+          if (kid.bounds[0][k] > kid.bounds[1][k]) continue;
+          for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(kid.bounds[2 * a][k], node.bounds[2 * a][i]);
+            EXPECT_LE(kid.bounds[2 * a + 1][k], node.bounds[2 * a + 1][i]);
+          }
+        }
+      }
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
+  EXPECT_EQ(leaves, acc.stats.leaves);
+  EXPECT_EQ(leaves, w.leaves);
+}
+
+TEST(Bvh, TheWideTreeHoldsEveryTriangleOnceInBlocksUnderItsParentsBox) {
+  const Scene scene = test::geometry_scene({test::random_soup(3000, 0.2f, 13)});
+  for (std::uint32_t leaf : {1u, 4u, 7u, 64u, 5000u})
+    for (Isa isa : test::runnable_isas()) {
+      const Accel acc = Accel::build(scene, BvhConfig{leaf, Split::sah, 16}, isa);
+      if (bvh_width(isa) == 8)
+        expect_wide_tree_is_well_formed<8>(acc, leaf);
+      else
+        expect_wide_tree_is_well_formed<4>(acc, leaf);
+    }
+}
+
+TEST(Bvh, CollapsingMakesFewerNodesThanTheBinaryTree) {
+  const Scene scene = test::geometry_scene({test::random_soup(10000, 0.1f, 14)});
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    const double ratio = double(acc.stats.nodes - acc.stats.leaves) / acc.wide_nodes;
+    // A full binary tree of L leaves has L - 1 inner nodes; a full N-wide one (L - 1)/(N - 1),
+    // a collapsed one somewhat more (a node stops opening children that are leaves).
+    EXPECT_GT(ratio, bvh_width(isa) == 8 ? 4.0 : 2.0) << isa_name(isa);
+    EXPECT_LE(acc.blocks.size(), (acc.tris.size() + 3) / 4 + acc.stats.leaves);
+  }
 }
 
 TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
@@ -112,9 +228,15 @@ TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
 }
 
 TEST(Bvh, ChildBoxesAreInsideTheirParent) {
-  const Scene scene = test::geometry_scene({test::random_soup(2000, 0.2f, 9)});
-  const Accel acc = Accel::build(scene, BvhConfig{2, Split::midpoint, 16});
-  const auto& nodes = acc.bvh.nodes;
+  std::vector<Aabb> boxes;
+  for (const Triangle& t : Accel::build(test::geometry_scene({test::random_soup(2000, 0.2f, 9)}),
+                                        BvhConfig{}).tris) {
+    Aabb b;
+    b.grow(t.v0), b.grow(t.v1), b.grow(t.v2);
+    boxes.push_back(b);
+  }
+  const Bvh bvh = build_bvh(boxes, BvhConfig{2, Split::midpoint, 16});
+  const auto& nodes = bvh.nodes;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].is_leaf()) continue;
     for (std::uint32_t c : {std::uint32_t(i + 1), nodes[i].offset})
@@ -153,17 +275,21 @@ TEST(Bvh, DepthStaysBoundedOnPathologicalClustering) {
 
 TEST(Bvh, LeafLargerThanTheSceneIsOneLeafAndStillCorrect) {
   const Scene scene = test::geometry_scene({test::random_soup(200, 0.3f, 21)});
-  const Accel acc = Accel::build(scene, BvhConfig{16384, Split::sah, 16});
-  EXPECT_EQ(acc.bvh.stats.nodes, 1u);
-  const auto rays = test::random_rays(acc, 5000, 22);
-  expect_closest_equals_brute_force(acc, rays);
+  const BvhConfig config{16384, Split::sah, 16};
+  const Accel acc = Accel::build(scene, config);
+  EXPECT_EQ(acc.stats.nodes, 1u);
+  EXPECT_TRUE(acc.wide<4>().root & kLeaf || acc.wide<8>().root & kLeaf);  // one leaf: the root
+  expect_closest_equals_brute_force(scene, config, test::random_rays(acc, 5000, 22));
 }
 
 TEST(Bvh, EmptySceneHasNoNodesAndRaysMiss) {
   const Scene scene = test::geometry_scene({});
-  const Accel acc = Accel::build(scene, BvhConfig{});
-  EXPECT_TRUE(acc.bvh.nodes.empty());
-  EXPECT_FALSE((closest_hit<kAll>(acc, Ray(vec4(0, 0, 0), vec4(0, 0, -1)), 0, kInfinity).found()));
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    EXPECT_TRUE(acc.blocks.empty());
+    EXPECT_FALSE(trace_closest(acc, Ray(vec4(0, 0, 0), vec4(0, 0, -1))).found());
+    EXPECT_FALSE(trace_occluded(acc, Ray(vec4(0, 0, 0), vec4(0, 0, -1)), kInfinity));
+  }
 }
 
 TEST(Bvh, BuilderRejectsAbsurdConfiguration) {
@@ -172,12 +298,24 @@ TEST(Bvh, BuilderRejectsAbsurdConfiguration) {
   static_assert(sizeof(BvhNode) == 32);
 }
 
-TEST(Bvh, LeafOrderKeepsEachLeafsTrianglesContiguous) {
+TEST(Bvh, ALeafsBlocksHoldConsecutiveTrianglesAndTheirExactVertices) {
   const Scene scene = test::geometry_scene({test::random_soup(1000, 0.2f, 31)});
   const Accel acc = Accel::build(scene, BvhConfig{8, Split::sah, 16});
-  for (std::size_t i = 0; i < acc.refs.size(); ++i) {
-    EXPECT_EQ(prim_tag(acc.refs[i]), kTriangleTag);
-    EXPECT_EQ(prim_index(acc.refs[i]), i);  // triangles stored in leaf order
+  std::uint32_t next = 0;
+  bool leaf_start = true;
+  for (const TriangleBlock& b : acc.blocks) {
+    for (int l = 0; l < 4; ++l) {
+      if (b.prim_of(l) == TriangleBlock::kNoPrim) continue;
+      if (!leaf_start || l > 0) EXPECT_EQ(b.prim_of(l), next);  // triangles in leaf order
+      next = b.prim_of(l) + 1;
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(b.v0[a][l], acc.tris[b.prim_of(l)].v0[a]);
+        EXPECT_EQ(b.v1[a][l], acc.tris[b.prim_of(l)].v1[a]);
+        EXPECT_EQ(b.v2[a][l], acc.tris[b.prim_of(l)].v2[a]);
+        EXPECT_EQ(b.n[a][l], acc.tris[b.prim_of(l)].n[a]);
+      }
+    }
+    leaf_start = b.last();
   }
 }
 

@@ -95,12 +95,12 @@ TEST_F(Cli, AbsurdParametersFailBeforeRendering) {
   expect_clean_failure(run("--no-such-option"), "no-such-option");
 }
 
-TEST_F(Cli, UnknownBackendPresetPatternSplitAndKernelFail) {
+TEST_F(Cli, UnknownBackendPresetPatternSplitAndIsaFail) {
   expect_clean_failure(run("--backend cuda"), "cuda");
   expect_clean_failure(run("--preset ultra"), "ultra");
   expect_clean_failure(run("--pattern hexagon"), "hexagon");
   expect_clean_failure(run("--split median"), "median");
-  expect_clean_failure(run("--kernel fast"), "fast");
+  expect_clean_failure(run("--isa avx9000"), "avx9000");
 }
 
 TEST_F(Cli, ImageLargerThanMemoryFailsBeforeAllocating) {

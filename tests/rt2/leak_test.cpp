@@ -5,6 +5,7 @@
 // a sphere's surface, and rays with zero or NaN directions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -14,6 +15,7 @@
 #include "rt2/offset.h"
 #include "rt2/scene_io.h"
 #include "rt2/shapes.h"
+#include "rt2/trace.h"
 #include "tests/rt2/test_util.h"
 
 namespace rt2 {
@@ -21,8 +23,8 @@ namespace {
 
 using test::kSampleScale;
 
-constexpr unsigned kFast = kTriangles;
-constexpr unsigned kTight = kTriangles | kWatertight;
+constexpr TraceOptions kFast{false};
+constexpr TraceOptions kTight{true};
 
 // The vertices, the midpoints of every edge, then random points on random faces, up to n.
 std::vector<vec4> targets(const Mesh& m, std::size_t n, unsigned seed) {
@@ -52,25 +54,39 @@ struct Escapes {
   std::size_t rays = 0, fast = 0, watertight = 0;
 };
 
+// Rays from `inside` through the mesh's vertices, edge midpoints and random points, with
+// every runnable ISA (each has its own BVH width); the escapes summed over them.
 Escapes shoot_from_inside(const Mesh& mesh, const vec4& inside, std::size_t n) {
   const Scene scene = test::geometry_scene({mesh});
-  const Accel acc = Accel::build(scene, BvhConfig{4, Split::sah, 16});
   const std::vector<vec4> aims = targets(mesh, n, 7);
+  std::vector<Ray> rays;
+  rays.reserve(aims.size());
+  for (const vec4& a : aims) rays.emplace_back(inside, normalize(a - inside));
+  const std::vector<float> t_max(rays.size(), kInfinity);
   Escapes e;
-  e.rays = aims.size();
-  std::size_t fast = 0, tight = 0;
-#pragma omp parallel for reduction(+ : fast, tight) schedule(dynamic, 1024)
-  for (std::size_t i = 0; i < aims.size(); ++i) {
-    const Ray r(inside, normalize(aims[i] - inside));
-    fast += !closest_hit<kFast>(acc, r, 0.0f, kInfinity).found();
-    tight += !closest_hit<kTight>(acc, r, 0.0f, kInfinity).found();
+  e.rays = rays.size();
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{4, Split::sah, 16}, isa);
+    std::size_t fast = 0, tight = 0;
+    constexpr std::size_t kChunk = 4096;
+#pragma omp parallel for reduction(+ : fast, tight) schedule(dynamic, 1)
+    for (std::size_t c = 0; c < rays.size(); c += kChunk) {
+      const std::size_t n_c = std::min(kChunk, rays.size() - c);
+      std::vector<Hit> a(n_c), b(n_c);
+      trace_closest(acc, kFast, rays.data() + c, t_max.data() + c, n_c, a.data());
+      trace_closest(acc, kTight, rays.data() + c, t_max.data() + c, n_c, b.data());
+      for (std::size_t i = 0; i < n_c; ++i) {
+        fast += !a[i].found();
+        tight += !b[i].found();
+      }
+    }
+    std::printf("%s (%s, %d-wide BVH): %zu rays from inside, %zu vertices: fast test %zu escapes "
+                "(%.2e), watertight %zu\n",
+                mesh.name.c_str(), isa_name(isa), bvh_width(isa), e.rays, mesh.positions.size(),
+                fast, double(fast) / double(e.rays), tight);
+    e.fast += fast;
+    e.watertight += tight;
   }
-  e.fast = fast;
-  e.watertight = tight;
-  std::printf("%s: %zu rays from inside, %zu vertices: fast test %zu escapes (%.2e), "
-              "watertight %zu\n",
-              mesh.name.c_str(), e.rays, mesh.positions.size(), e.fast,
-              double(e.fast) / double(e.rays), e.watertight);
   return e;
 }
 
@@ -80,7 +96,7 @@ bool is_inside(const Mesh& mesh, const vec4& p) {
   const Accel acc = Accel::build(scene, BvhConfig{4, Split::sah, 16});
   for (const vec4& d : {vec4(0.3f, 0.9f, 0.1f), vec4(-0.7f, 0.2f, 0.5f), vec4(0.1f, -0.4f, -0.9f)}) {
     const Ray r(p, normalize(d));
-    const ShearFor<kTight> shear(r);
+    const WatertightRay shear(r);
     int hits = 0;
     for (const Triangle& t : acc.tris) {
       float th, u, v;
@@ -133,8 +149,8 @@ TEST(Leak, BothTestsAgreeAwayFromEdges) {
   const auto rays = test::random_rays(acc, 20000 / kSampleScale, 42);
   std::size_t differ = 0;
   for (const Ray& r : rays) {
-    const Hit a = closest_hit<kFast>(acc, r, 0.0f, kInfinity);
-    const Hit b = closest_hit<kTight>(acc, r, 0.0f, kInfinity);
+    const Hit a = trace_closest(acc, r, kInfinity, kFast);
+    const Hit b = trace_closest(acc, r, kInfinity, kTight);
     if (a.found() != b.found() || (a.found() && a.prim != b.prim)) {
       ++differ;  // only a ray within rounding of an edge may differ
       continue;
@@ -159,14 +175,17 @@ TEST(Leak, WatertightTestDecidesExactEdgeHitsConsistentlyForBothNeighbours) {
   m.faces = {{0, 1, 2}, {1, 0, 3}};
   m.face_materials = {0, 0};
   const Scene scene = test::geometry_scene({m});
-  const Accel acc = Accel::build(scene, BvhConfig{});
+  std::map<Isa, Accel> accs;
+  for (Isa isa : test::runnable_isas()) accs[isa] = Accel::build(scene, BvhConfig{}, isa);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-0.99f, 0.99f);
   for (int i = 0; i < 10000; ++i) {
     const vec4 on_edge(0.0f, u(rng), 0.0f);
     const vec4 org = on_edge + vec4(u(rng), u(rng), 1.0f + std::fabs(u(rng)));
-    ASSERT_TRUE((closest_hit<kTight>(acc, Ray(org, normalize(on_edge - org)), 0, kInfinity).found()))
-        << i;
+    for (Isa isa : test::runnable_isas())
+      ASSERT_TRUE(trace_closest(accs[isa], Ray(org, normalize(on_edge - org)), kInfinity, kTight)
+                      .found())
+          << i << " " << isa_name(isa);
   }
 }
 
@@ -276,11 +295,13 @@ TEST(DegenerateRays, ZeroOrNaNDirectionsAndNaNOriginsHitNothingAndDoNotCrash) {
   const std::vector<Ray> rays = {Ray(vec4(0, 0, 3), vec4(0, 0, 0)), Ray(vec4(0, 0, 3), vec4(nan, 0, -1)),
                                  Ray(vec4(nan, 0, 3), vec4(0, 0, -1)),
                                  Ray(vec4(0, 0, 3), vec4(kInfinity, 0, 0))};
-  const std::vector<Material> mats(1);
-  for (const Ray& r : rays) {
-    EXPECT_FALSE((closest_hit<kAllFeatures>(acc, r, 0.0f, kInfinity).found()));
-    EXPECT_FALSE((closest_hit<kAllFeatures | kWatertight>(acc, r, 0.0f, kInfinity).found()));
-    EXPECT_EQ((transmittance<kAllFeatures>(acc, mats, r, 0.0f, 10.0f)), 1.0f);
+  for (Isa isa : test::runnable_isas()) {
+    const Accel a = Accel::build(scene, BvhConfig{}, isa);
+    for (const Ray& r : rays)
+      for (TraceOptions o : {kFast, kTight}) {
+        EXPECT_FALSE(trace_closest(a, r, kInfinity, o).found()) << isa_name(isa);
+        EXPECT_FALSE(trace_occluded(a, r, 10.0f, o)) << isa_name(isa);
+      }
   }
 }
 

@@ -1,5 +1,5 @@
-// Whole frames: specialised and generic kernels, every backend, thread count and grain
-// give bit-identical images; features are detected; ray counts follow the settings; bad
+// Whole frames: every instruction set (and so both BVH widths), backend, thread count and
+// grain give bit-identical images; features are detected; ray counts follow the settings; bad
 // settings are rejected.
 #include <gtest/gtest.h>
 
@@ -31,8 +31,8 @@ Scene everything_scene() {
 }
 
 Image render(const Scene& scene, const RenderSettings& st, const Schedule& sched,
-             RayCounts* rays = nullptr, BvhConfig bvh = {}) {
-  const Accel acc = Accel::build(scene, bvh);
+             RayCounts* rays = nullptr, BvhConfig bvh = {}, Isa isa = best_isa()) {
+  const Accel acc = Accel::build(scene, bvh, isa);
   const Renderer r(scene, acc, st);
   Image img;
   const FrameResult fr = render_frame(r, sched, img);
@@ -70,23 +70,24 @@ TEST(Render, FeaturesOfTheDefaultSceneExcludeRefraction) {
   EXPECT_FALSE(dark.features() & kSpecular);  // specular needs a light to matter
 }
 
-TEST(Render, SpecialisedAndGenericKernelsGiveIdenticalImages) {
+TEST(Render, EveryInstructionSetGivesIdenticalImages) {
   Scene no_planes = make_default_scene();
   no_planes.planes.clear();
   no_planes.plane_materials.clear();
-  for (const Scene& s : {make_default_scene(), everything_scene(), no_planes}) {
-    RenderSettings spec = small(), gen = small();
-    gen.generic_kernel = true;
-    const Accel acc = Accel::build(s, BvhConfig{});
-    EXPECT_EQ(Renderer(s, acc, spec).kernel_features(), s.features());
-    EXPECT_EQ(Renderer(s, acc, gen).kernel_features(), kAllFeatures);
-    RayCounts ra, rb;
-    const Image a = render(s, spec, Schedule{Backend::serial, 1, 1}, &ra);
-    const Image b = render(s, gen, Schedule{Backend::serial, 1, 1}, &rb);
-    EXPECT_TRUE(identical(a, b));
-    EXPECT_EQ(ra.total(), rb.total());
-    EXPECT_GT(mean(a), 0.01);  // something was rendered
-  }
+  for (const Scene& s : {make_default_scene(), everything_scene(), no_planes})
+    for (bool watertight : {false, true}) {
+      RenderSettings st = small();
+      st.watertight = watertight;
+      RayCounts ra;
+      const Image a = render(s, st, Schedule{Backend::serial, 1, 1}, &ra);
+      EXPECT_GT(mean(a), 0.01);  // something was rendered
+      for (Isa isa : test::runnable_isas()) {
+        RayCounts rb;
+        const Image b = render(s, st, Schedule{Backend::serial, 1, 1}, &rb, BvhConfig{}, isa);
+        EXPECT_TRUE(identical(a, b)) << isa_name(isa) << " watertight " << watertight;
+        EXPECT_EQ(ra.total(), rb.total());
+      }
+    }
 }
 
 TEST(Render, BackendsThreadCountsAndGrainsGiveIdenticalImages) {

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "rt2/schedule.h"
-#include "rt2/tracer.h"
+#include "rt2/optics.h"
 
 namespace rt2 {
 namespace {
@@ -176,7 +176,7 @@ TEST(Tracing, GlassSphereSeenHeadOnIsTransparentWithEnoughDepth) {
 TEST(Optics, ReflectionKeepsTheAngleAndMirrorsTheNormalComponent) {
   const vec4 n(0, 1, 0);
   const vec4 i = normalize(vec4(1, -2, 0.5f));
-  const vec4 r = detail::reflect(i, n);
+  const vec4 r = reflect(i, n);
   EXPECT_NEAR(float(dot(r, n)), -float(dot(i, n)), 1e-6f);
   EXPECT_NEAR(r[0], i[0], 1e-6f);
   EXPECT_NEAR(r[2], i[2], 1e-6f);
@@ -188,7 +188,7 @@ TEST(Optics, RefractionFollowsSnellsLaw) {
   for (float theta : {0.0f, 10.0f, 30.0f, 60.0f, 89.0f}) {
     const vec4 i(std::sin(theta * kDeg), -std::cos(theta * kDeg), 0);
     vec4 t;
-    ASSERT_TRUE(detail::refract(i, n, 1.0f / 1.5f, t));
+    ASSERT_TRUE(refract(i, n, 1.0f / 1.5f, t));
     const float sin_t = std::sqrt(t[0] * t[0] + t[2] * t[2]);
     EXPECT_NEAR(sin_t, std::sin(theta * kDeg) / 1.5f, 1e-6f) << theta;  // n1 sin a = n2 sin b
     EXPECT_LT(t[1], 0.0f);     // goes into the surface
@@ -202,14 +202,14 @@ TEST(Optics, TotalInternalReflectionBeyondTheCriticalAngle) {
   const float critical = std::asin(1.0f / 1.5f) / kDeg;  // 41.8 degrees
   vec4 t;
   const auto incident = [](float deg) { return vec4(std::sin(deg * kDeg), -std::cos(deg * kDeg), 0); };
-  EXPECT_TRUE(detail::refract(incident(critical - 0.5f), n, 1.5f, t));
-  EXPECT_FALSE(detail::refract(incident(critical + 0.5f), n, 1.5f, t));
-  EXPECT_FALSE(detail::refract(incident(80.0f), n, 1.5f, t));
+  EXPECT_TRUE(refract(incident(critical - 0.5f), n, 1.5f, t));
+  EXPECT_FALSE(refract(incident(critical + 0.5f), n, 1.5f, t));
+  EXPECT_FALSE(refract(incident(80.0f), n, 1.5f, t));
 }
 
 TEST(Optics, NormalIncidencePassesStraightThrough) {
   vec4 t;
-  ASSERT_TRUE(detail::refract(vec4(0, -1, 0), vec4(0, 1, 0), 1.0f / 1.33f, t));
+  ASSERT_TRUE(refract(vec4(0, -1, 0), vec4(0, 1, 0), 1.0f / 1.33f, t));
   EXPECT_EQ(t, vec4(0, -1, 0));
 }
 
@@ -218,10 +218,10 @@ TEST(Shading, CheckerAlternatesDiffuseColourByCell) {
   m.diffuse = vec4(1, 1, 1);
   m.diffuse2 = vec4(0, 0, 0);
   m.checker_scale = 1.0f;
-  EXPECT_EQ(detail::diffuse_at(m, vec4(0.5f, 0, 0.5f)), vec4(1, 1, 1));
-  EXPECT_EQ(detail::diffuse_at(m, vec4(1.5f, 0, 0.5f)), vec4(0, 0, 0));
-  EXPECT_EQ(detail::diffuse_at(m, vec4(-0.5f, 0, 0.5f)), vec4(0, 0, 0));
-  EXPECT_EQ(detail::diffuse_at(m, vec4(1.5f, 0, 1.5f)), vec4(1, 1, 1));
+  EXPECT_EQ(m.diffuse_at(vec4(0.5f, 0, 0.5f)), vec4(1, 1, 1));
+  EXPECT_EQ(m.diffuse_at(vec4(1.5f, 0, 0.5f)), vec4(0, 0, 0));
+  EXPECT_EQ(m.diffuse_at(vec4(-0.5f, 0, 0.5f)), vec4(0, 0, 0));
+  EXPECT_EQ(m.diffuse_at(vec4(1.5f, 0, 1.5f)), vec4(1, 1, 1));
 }
 
 }  // namespace

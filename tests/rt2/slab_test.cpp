@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "rt2/shapes.h"
+#include "rt2/trace.h"
 #include "tests/rt2/test_util.h"
 
 namespace rt2 {
@@ -28,16 +29,24 @@ float plane_or_gap(std::mt19937& rng) {
   return (k % 2 ? base + 0.75f : base) + ((rng() % 3 == 0) ? 0.375f : 0.0f);
 }
 
-std::size_t compare_with_brute_force(const Accel& acc, const std::vector<Ray>& rays) {
+// The wide BVH's closest hit against brute force, for every runnable ISA (BVH width) and
+// both triangle tests; returns the number of hits.
+std::size_t compare_with_brute_force(const Scene& scene, const BvhConfig& config,
+                                     const std::vector<Ray>& rays) {
   std::size_t hits = 0;
-  for (const Ray& r : rays) {
-    const Hit bvh = closest_hit<kTriangles>(acc, r, 0.0f, kInfinity);
-    const Hit ref = test::brute_force(acc, r, 0.0f, kInfinity);
-    EXPECT_EQ(bvh.found(), ref.found()) << str(r.org) << " " << str(r.dir);
-    if (bvh.found() && ref.found()) {
-      EXPECT_EQ(bvh.t, ref.t);
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, config, isa);
+    for (bool watertight : {false, true}) {
+      hits = 0;
+      for (const Ray& r : rays) {
+        const Hit bvh = trace_closest(acc, r, kInfinity, {watertight});
+        const Hit ref = test::brute_force(acc, r, 0.0f, kInfinity, watertight);
+        EXPECT_EQ(bvh.found(), ref.found())
+            << str(r.org) << " " << str(r.dir) << " " << isa_name(isa) << " " << watertight;
+        if (bvh.found() && ref.found()) EXPECT_EQ(bvh.t, ref.t);
+        hits += ref.found();
+      }
     }
-    hits += ref.found();
   }
   return hits;
 }
@@ -45,7 +54,6 @@ std::size_t compare_with_brute_force(const Accel& acc, const std::vector<Ray>& r
 TEST(Slab, AxisParallelRaysInFacePlanesAndAlongEdgesAreNotCulled) {
   const Scene scene = box_grid();
   for (std::uint32_t leaf : {1u, 4u, 16u}) {
-    const Accel acc = Accel::build(scene, BvhConfig{leaf, Split::sah, 16});
     std::mt19937 rng(leaf);
     std::vector<Ray> rays;
     for (int i = 0; i < 20000; ++i) {
@@ -56,13 +64,12 @@ TEST(Slab, AxisParallelRaysInFacePlanesAndAlongEdgesAreNotCulled) {
       d[axis] = o[axis] < 0 ? 1.0f : -1.0f;
       rays.emplace_back(o, d);
     }
-    EXPECT_GT(compare_with_brute_force(acc, rays), 1000u);
+    EXPECT_GT(compare_with_brute_force(scene, BvhConfig{leaf, Split::sah, 16}, rays), 1000u);
   }
 }
 
 TEST(Slab, RaysWithOneZeroComponentSweepingAcrossFacesAreNotCulled) {
   const Scene scene = box_grid();
-  const Accel acc = Accel::build(scene, BvhConfig{4, Split::midpoint, 16});
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::vector<Ray> rays;
@@ -75,12 +82,11 @@ TEST(Slab, RaysWithOneZeroComponentSweepingAcrossFacesAreNotCulled) {
     o = o - 6.0f * normalize(d);
     rays.emplace_back(o, normalize(d));
   }
-  EXPECT_GT(compare_with_brute_force(acc, rays), 1000u);
+  EXPECT_GT(compare_with_brute_force(scene, BvhConfig{4, Split::midpoint, 16}, rays), 1000u);
 }
 
 TEST(Slab, GrazingRaysAreNotCulled) {
   const Scene scene = box_grid();
-  const Accel acc = Accel::build(scene, BvhConfig{2, Split::sah, 16});
   std::mt19937 rng(11);
   std::vector<Ray> rays;
   for (int i = 0; i < 20000; ++i) {
@@ -92,7 +98,7 @@ TEST(Slab, GrazingRaysAreNotCulled) {
     d[other] = std::ldexp(1.0f, -static_cast<int>(10 + rng() % 30)) * ((rng() % 2) ? 1 : -1);
     rays.emplace_back(o, normalize(d));
   }
-  EXPECT_GT(compare_with_brute_force(acc, rays), 1000u);
+  EXPECT_GT(compare_with_brute_force(scene, BvhConfig{2, Split::sah, 16}, rays), 1000u);
 }
 
 TEST(Slab, BoxTestIsConservativeForRaysOnItsBoundary) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/isa.h"
 #include "rt2/scene.h"
 
 namespace rt2::test {
@@ -85,14 +86,29 @@ inline std::vector<Ray> random_rays(const Accel& acc, std::size_t n, unsigned se
   return rays;
 }
 
-// The nearest hit by testing every primitive: the oracle for the BVH.
-inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max) {
+// The instruction sets this build has and this CPU runs: every one is tested.
+inline std::vector<Isa> runnable_isas() {
+  std::vector<Isa> out;
+  for (Isa isa : built_isas())
+    if (isa_supported(isa)) out.push_back(isa);
+  return out;
+}
+
+// The nearest hit by testing every primitive with the one-triangle tests of triangle.h:
+// the oracle for the BVH. Ties at equal t go to the smaller triangle index (strict <, in
+// index order), as the BVH's do.
+inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max,
+                       bool watertight = false) {
   Hit h;
   h.t = t_max;
+  const WatertightRay shear(r);
   for (std::uint32_t i = 0; i < acc.tris.size(); ++i) {
     float t, u, v;
-    if (intersect(acc.tris[i], r, t_min, h.t, t, u, v)) {
+    if (watertight ? intersect_watertight(acc.tris[i], shear, t_min, h.t, t, u, v)
+                   : intersect(acc.tris[i], r, t_min, h.t, t, u, v)) {
       h.t = t;
+      h.u = u;
+      h.v = v;
       h.prim = kTriangleTag | i;
     }
   }

@@ -1,0 +1,84 @@
+// mlib/vfloat4_scalar.h — vfloat4 / vbool4 without SIMD: the same API as vfloat4_sse41.h
+// computed lane by lane in plain C++, for the scalar build (scons arch=scalar, the thesis's
+// "no SIMD" baseline). Same NaN rules as the SSE instructions it mirrors: min/max return
+// the second operand when either is NaN; masks are all-ones or zero per lane.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "mlib/simd.h"  // MLIB_INLINE
+
+namespace mlib {
+
+struct vbool4 {
+  bool m[4];
+  static constexpr int size = 4;
+};
+
+struct vfloat4 {
+  float v[4];
+  static constexpr int size = 4;
+  using bool_type = vbool4;
+
+  MLIB_INLINE static vfloat4 broadcast(float s) { return {{s, s, s, s}}; }
+  MLIB_INLINE static vfloat4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+  MLIB_INLINE void store(float* p) const {
+    for (int i = 0; i < 4; ++i) p[i] = v[i];
+  }
+};
+
+namespace detail {
+template <class F>
+MLIB_INLINE vfloat4 lanes(F f) {
+  vfloat4 r;
+  for (int i = 0; i < 4; ++i) r.v[i] = f(i);
+  return r;
+}
+template <class F>
+MLIB_INLINE vbool4 lane_mask(F f) {
+  vbool4 r;
+  for (int i = 0; i < 4; ++i) r.m[i] = f(i);
+  return r;
+}
+}  // namespace detail
+
+MLIB_INLINE vfloat4 operator+(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) { return a.v[i] + b.v[i]; }); }
+MLIB_INLINE vfloat4 operator-(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) { return a.v[i] - b.v[i]; }); }
+MLIB_INLINE vfloat4 operator*(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) { return a.v[i] * b.v[i]; }); }
+MLIB_INLINE vfloat4 operator/(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) { return a.v[i] / b.v[i]; }); }
+MLIB_INLINE vfloat4 min(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) { return a.v[i] < b.v[i] ? a.v[i] : b.v[i]; }); }
+MLIB_INLINE vfloat4 max(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) { return a.v[i] > b.v[i] ? a.v[i] : b.v[i]; }); }
+MLIB_INLINE vfloat4 abs(vfloat4 a) {
+  return detail::lanes([&](int i) { return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) & 0x7fffffffu); });
+}
+MLIB_INLINE vfloat4 xor_sign(vfloat4 a, vfloat4 s) {
+  return detail::lanes([&](int i) {
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) ^
+                                (std::bit_cast<std::uint32_t>(s.v[i]) & 0x80000000u));
+  });
+}
+
+MLIB_INLINE vbool4 operator<(vfloat4 a, vfloat4 b) { return detail::lane_mask([&](int i) { return a.v[i] < b.v[i]; }); }
+MLIB_INLINE vbool4 operator<=(vfloat4 a, vfloat4 b) { return detail::lane_mask([&](int i) { return a.v[i] <= b.v[i]; }); }
+MLIB_INLINE vbool4 operator>(vfloat4 a, vfloat4 b) { return detail::lane_mask([&](int i) { return a.v[i] > b.v[i]; }); }
+MLIB_INLINE vbool4 operator>=(vfloat4 a, vfloat4 b) { return detail::lane_mask([&](int i) { return a.v[i] >= b.v[i]; }); }
+MLIB_INLINE vbool4 operator==(vfloat4 a, vfloat4 b) { return detail::lane_mask([&](int i) { return a.v[i] == b.v[i]; }); }
+MLIB_INLINE vbool4 operator!=(vfloat4 a, vfloat4 b) { return detail::lane_mask([&](int i) { return a.v[i] != b.v[i]; }); }
+MLIB_INLINE vbool4 operator&(vbool4 a, vbool4 b) { return detail::lane_mask([&](int i) { return a.m[i] && b.m[i]; }); }
+MLIB_INLINE vbool4 operator|(vbool4 a, vbool4 b) { return detail::lane_mask([&](int i) { return a.m[i] || b.m[i]; }); }
+MLIB_INLINE vbool4 andnot(vbool4 a, vbool4 b) { return detail::lane_mask([&](int i) { return !a.m[i] && b.m[i]; }); }
+
+MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
+  return detail::lanes([&](int i) { return m.m[i] ? if_true.v[i] : if_false.v[i]; });
+}
+MLIB_INLINE unsigned bits(vbool4 m) {
+  return unsigned(m.m[0]) | unsigned(m.m[1]) << 1 | unsigned(m.m[2]) << 2 | unsigned(m.m[3]) << 3;
+}
+MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {
+  const vfloat4 b{{a.v[1], a.v[0], a.v[3], a.v[2]}};
+  const vfloat4 m = min(a, b);
+  return min(m, vfloat4{{m.v[2], m.v[3], m.v[0], m.v[1]}});
+}
+
+}  // namespace mlib

@@ -1,0 +1,70 @@
+// mlib/vfloat4_sse41.h — vfloat4 / vbool4: four independent float lanes on SSE4.1, for
+// structure-of-arrays code (four boxes, four triangles at a time).
+//
+// Unlike vec4 (one point or direction, lanes x y z w), a vfloat4's lanes are four unrelated
+// values. The API is shared with the sibling files vfloat8_avx2.h (eight lanes) and
+// vfloat4_scalar.h (plain C++), so code templated on the width compiles against any of
+// them. Only the translation units built for an ISA include the wide files (rt2/isa.h).
+//
+// NaN conventions (callers rely on them): min(a, b) / max(a, b) return b in a lane where
+// either operand is NaN; ordered comparisons are false in a NaN lane.
+#pragma once
+
+#include <smmintrin.h>  // SSE4.1
+
+#include "mlib/simd.h"  // MLIB_INLINE
+
+namespace mlib {
+
+struct vbool4 {
+  __m128 m;
+  static constexpr int size = 4;
+};
+
+struct vfloat4 {
+  __m128 v;
+  static constexpr int size = 4;
+  using bool_type = vbool4;
+
+  MLIB_INLINE static vfloat4 broadcast(float s) { return {_mm_set1_ps(s)}; }
+  MLIB_INLINE static vfloat4 load(const float* p) { return {_mm_load_ps(p)}; }  // 16-byte aligned
+  MLIB_INLINE void store(float* p) const { _mm_store_ps(p, v); }
+};
+
+MLIB_INLINE vfloat4 operator+(vfloat4 a, vfloat4 b) { return {_mm_add_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat4 operator-(vfloat4 a, vfloat4 b) { return {_mm_sub_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat4 operator*(vfloat4 a, vfloat4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat4 operator/(vfloat4 a, vfloat4 b) { return {_mm_div_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat4 min(vfloat4 a, vfloat4 b) { return {_mm_min_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat4 max(vfloat4 a, vfloat4 b) { return {_mm_max_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat4 abs(vfloat4 a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
+// The sign bit of each lane of `a` flipped where `s` is negative (or -0): a * sign(s)
+// without a multiply.
+MLIB_INLINE vfloat4 xor_sign(vfloat4 a, vfloat4 s) {
+  return {_mm_xor_ps(a.v, _mm_and_ps(s.v, _mm_set1_ps(-0.0f)))};
+}
+
+MLIB_INLINE vbool4 operator<(vfloat4 a, vfloat4 b) { return {_mm_cmplt_ps(a.v, b.v)}; }
+MLIB_INLINE vbool4 operator<=(vfloat4 a, vfloat4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
+MLIB_INLINE vbool4 operator>(vfloat4 a, vfloat4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+MLIB_INLINE vbool4 operator>=(vfloat4 a, vfloat4 b) { return {_mm_cmpge_ps(a.v, b.v)}; }
+MLIB_INLINE vbool4 operator==(vfloat4 a, vfloat4 b) { return {_mm_cmpeq_ps(a.v, b.v)}; }
+MLIB_INLINE vbool4 operator!=(vfloat4 a, vfloat4 b) { return {_mm_cmpneq_ps(a.v, b.v)}; }  // true for NaN
+MLIB_INLINE vbool4 operator&(vbool4 a, vbool4 b) { return {_mm_and_ps(a.m, b.m)}; }
+MLIB_INLINE vbool4 operator|(vbool4 a, vbool4 b) { return {_mm_or_ps(a.m, b.m)}; }
+MLIB_INLINE vbool4 andnot(vbool4 a, vbool4 b) { return {_mm_andnot_ps(a.m, b.m)}; }  // ~a & b
+
+// Lane i of the result is b's where m is set, else a's.
+MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
+  return {_mm_blendv_ps(if_false.v, if_true.v, m.m)};
+}
+// Bit i set when lane i of m is.
+MLIB_INLINE unsigned bits(vbool4 m) { return static_cast<unsigned>(_mm_movemask_ps(m.m)); }
+
+// The smallest lane, in every lane (NaN lanes are not expected: callers select them away).
+MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {
+  const __m128 m = _mm_min_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
+  return {_mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)))};
+}
+
+}  // namespace mlib

@@ -1,0 +1,63 @@
+// mlib/vfloat8_avx2.h — vfloat8 / vbool8: eight independent float lanes on AVX2, the
+// sibling of vfloat4_sse41.h with the same API (see there). Included only by the
+// translation units built for AVX2 or AVX-512 (rt2/isa.h).
+#pragma once
+
+#include <immintrin.h>
+
+#include "mlib/simd.h"  // MLIB_INLINE
+
+#if !defined(__AVX2__)
+#error "mlib/vfloat8_avx2.h needs AVX2: include it only from a translation unit built for it"
+#endif
+
+namespace mlib {
+
+struct vbool8 {
+  __m256 m;
+  static constexpr int size = 8;
+};
+
+struct vfloat8 {
+  __m256 v;
+  static constexpr int size = 8;
+  using bool_type = vbool8;
+
+  MLIB_INLINE static vfloat8 broadcast(float s) { return {_mm256_set1_ps(s)}; }
+  MLIB_INLINE static vfloat8 load(const float* p) { return {_mm256_load_ps(p)}; }  // 32-byte aligned
+  MLIB_INLINE void store(float* p) const { _mm256_store_ps(p, v); }
+};
+
+MLIB_INLINE vfloat8 operator+(vfloat8 a, vfloat8 b) { return {_mm256_add_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat8 operator-(vfloat8 a, vfloat8 b) { return {_mm256_sub_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat8 operator*(vfloat8 a, vfloat8 b) { return {_mm256_mul_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat8 operator/(vfloat8 a, vfloat8 b) { return {_mm256_div_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat8 min(vfloat8 a, vfloat8 b) { return {_mm256_min_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat8 max(vfloat8 a, vfloat8 b) { return {_mm256_max_ps(a.v, b.v)}; }
+MLIB_INLINE vfloat8 abs(vfloat8 a) { return {_mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.v)}; }
+MLIB_INLINE vfloat8 xor_sign(vfloat8 a, vfloat8 s) {
+  return {_mm256_xor_ps(a.v, _mm256_and_ps(s.v, _mm256_set1_ps(-0.0f)))};
+}
+
+MLIB_INLINE vbool8 operator<(vfloat8 a, vfloat8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
+MLIB_INLINE vbool8 operator<=(vfloat8 a, vfloat8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
+MLIB_INLINE vbool8 operator>(vfloat8 a, vfloat8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
+MLIB_INLINE vbool8 operator>=(vfloat8 a, vfloat8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
+MLIB_INLINE vbool8 operator==(vfloat8 a, vfloat8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)}; }
+MLIB_INLINE vbool8 operator!=(vfloat8 a, vfloat8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_NEQ_UQ)}; }  // true for NaN
+MLIB_INLINE vbool8 operator&(vbool8 a, vbool8 b) { return {_mm256_and_ps(a.m, b.m)}; }
+MLIB_INLINE vbool8 operator|(vbool8 a, vbool8 b) { return {_mm256_or_ps(a.m, b.m)}; }
+MLIB_INLINE vbool8 andnot(vbool8 a, vbool8 b) { return {_mm256_andnot_ps(a.m, b.m)}; }  // ~a & b
+
+MLIB_INLINE vfloat8 select(vbool8 m, vfloat8 if_true, vfloat8 if_false) {
+  return {_mm256_blendv_ps(if_false.v, if_true.v, m.m)};
+}
+MLIB_INLINE unsigned bits(vbool8 m) { return static_cast<unsigned>(_mm256_movemask_ps(m.m)); }
+
+MLIB_INLINE vfloat8 reduce_min(vfloat8 a) {
+  __m256 m = _mm256_min_ps(a.v, _mm256_permute_ps(a.v, _MM_SHUFFLE(2, 3, 0, 1)));
+  m = _mm256_min_ps(m, _mm256_permute_ps(m, _MM_SHUFFLE(1, 0, 3, 2)));
+  return {_mm256_min_ps(m, _mm256_permute2f128_ps(m, m, 0x01))};
+}
+
+}  // namespace mlib

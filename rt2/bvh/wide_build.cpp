@@ -1,0 +1,111 @@
+// rt2/bvh/wide_build.cpp — collapsing the binary tree into the wide one (see wide_bvh.h).
+#include <algorithm>
+#include <limits>
+
+#include "rt2/bvh/wide_bvh.h"
+
+namespace rt2 {
+
+namespace {
+
+template <int N>
+class Collapser {
+ public:
+  Collapser(const Bvh& bvh, const std::vector<Triangle>& tris, std::vector<TriangleBlock>& blocks,
+            WideBvh<N>& out)
+      : bvh_(bvh), tris_(tris), blocks_(blocks), out_(out) {}
+
+  // The reference for binary node b: a wide node made from it, or its leaf.
+  std::uint32_t convert(std::uint32_t b, std::uint32_t depth) {
+    out_.max_depth = std::max(out_.max_depth, depth);
+    const BvhNode& node = bvh_.nodes[b];
+    if (node.is_leaf()) return leaf(node);
+    // Open the largest inner child until there are N children (or only leaves).
+    std::uint32_t kids[N] = {b + 1, node.offset};
+    int n = 2;
+    while (n < N) {
+      int best = -1;
+      float best_area = -1.0f;
+      for (int i = 0; i < n; ++i) {
+        const BvhNode& k = bvh_.nodes[kids[i]];
+        if (k.is_leaf()) continue;
+        const float a = area(k);
+        if (a > best_area) {
+          best_area = a;
+          best = i;
+        }
+      }
+      if (best < 0) break;
+      const std::uint32_t opened = kids[best];
+      kids[best] = opened + 1;
+      kids[n++] = bvh_.nodes[opened].offset;
+    }
+    const auto index = static_cast<std::uint32_t>(out_.nodes.size());
+    out_.nodes.emplace_back();
+    WideNode<N> w;
+    for (int i = 0; i < N; ++i) {
+      for (int a = 0; a < 3; ++a) {
+        w.bounds[2 * a][i] = std::numeric_limits<float>::infinity();
+        w.bounds[2 * a + 1][i] = -std::numeric_limits<float>::infinity();
+      }
+      w.child[i] = 0;
+    }
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& k = bvh_.nodes[kids[i]];
+      for (int a = 0; a < 3; ++a) {
+        w.bounds[2 * a][i] = k.lo[a];
+        w.bounds[2 * a + 1][i] = k.hi[a];
+      }
+      w.child[i] = convert(kids[i], depth + 1);
+    }
+    out_.nodes[index] = w;  // after the recursion: the vector may have moved
+    return index;
+  }
+
+ private:
+  static float area(const BvhNode& k) {
+    const float x = k.hi[0] - k.lo[0], y = k.hi[1] - k.lo[1], z = k.hi[2] - k.lo[2];
+    return x * y + y * z + z * x;
+  }
+
+  std::uint32_t leaf(const BvhNode& node) {
+    ++out_.leaves;
+    const auto first = static_cast<std::uint32_t>(blocks_.size());
+    for (std::uint32_t i = 0; i < node.count; i += TriangleBlock::kLanes) {
+      TriangleBlock block = TriangleBlock::empty();
+      for (std::uint32_t l = 0; l < TriangleBlock::kLanes && i + l < node.count; ++l) {
+        const std::uint32_t t = node.offset + i + l;
+        block.set(static_cast<int>(l), tris_[t], t);
+      }
+      blocks_.push_back(block);
+    }
+    blocks_.back().prim[0] |= TriangleBlock::kLastBlock;
+    return kLeaf | first;
+  }
+
+  const Bvh& bvh_;
+  const std::vector<Triangle>& tris_;
+  std::vector<TriangleBlock>& blocks_;
+  WideBvh<N>& out_;
+};
+
+}  // namespace
+
+template <int N>
+WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
+                        std::vector<TriangleBlock>& blocks) {
+  WideBvh<N> out;
+  if (bvh.nodes.empty()) return out;
+  out.nodes.reserve(bvh.nodes.size() / (N - 1) + 1);
+  Collapser<N> c(bvh, triangles, blocks, out);
+  out.root = c.convert(0, 0);
+  out.nodes.shrink_to_fit();
+  return out;
+}
+
+template WideBvh<4> collapse_bvh<4>(const Bvh&, const std::vector<Triangle>&,
+                                    std::vector<TriangleBlock>&);
+template WideBvh<8> collapse_bvh<8>(const Bvh&, const std::vector<Triangle>&,
+                                    std::vector<TriangleBlock>&);
+
+}  // namespace rt2

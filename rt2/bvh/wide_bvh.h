@@ -1,0 +1,68 @@
+// rt2/bvh/wide_bvh.h — the wide BVH rt2 traces: nodes of N = 4 or 8 children whose boxes are
+// stored as structure of arrays, so one SIMD pass tests a ray against all of them (Wald et
+// al. 2008, "Getting Rid of Packets"; Embree's BVH4/BVH8), with leaves of triangle blocks.
+//
+// It is converted from the binary SAH tree (bvh/build.h) by collapsing: each wide node
+// takes its binary node's children and keeps opening the child with the largest surface
+// area until it has N (Wald et al. 2008; as Embree's and tinybvh's converters do). The
+// binary tree's leaves become the wide tree's leaves unchanged, each a run of TriangleBlocks
+// (triangle_block.h), so the max-leaf-size rule of the thesis still holds. Boxes are the
+// binary tree's, padded for conservative traversal (build.cpp).
+//
+// Plain data; the builder makes it, the traversal (wide_traverse.h) reads it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rt2/bvh/node.h"
+#include "rt2/geometry/triangle_block.h"
+
+namespace rt2 {
+
+// A child reference: an inner node's index, or kLeaf | the index of the leaf's first block.
+inline constexpr std::uint32_t kLeaf = 0x80000000u;
+inline constexpr std::uint32_t kNoChild = 0xffffffffu;  // an empty tree's root
+
+// N = 4: 96 bytes of bounds + 16 of children = 112, padded to 128 (two cache lines).
+// N = 8: 192 + 32 = 224, padded to 256 (four lines). An unused slot has the empty box
+// lo = +inf, hi = -inf, which no ray enters (not even one with a zero direction component:
+// the slab distances are infinite, never NaN).
+template <int N>
+struct alignas(64) WideNode {
+  // Rows: lo x, hi x, lo y, hi y, lo z, hi z; row 2a + 1 is the high side of axis a, so a
+  // ray picks its near row per axis as 2a + (direction < 0) and its far row as near ^ 1.
+  float bounds[6][N];
+  std::uint32_t child[N];
+};
+static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);
+
+template <int N>
+struct WideBvh {
+  std::vector<WideNode<N>> nodes;  // depth first; nodes[0] is the root when root is not a leaf
+  std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
+  std::uint32_t leaves = 0;
+  std::uint32_t max_depth = 0;
+};
+
+// What walks of the tree did, for benchmarks: inner nodes visited and leaf blocks tested
+// (four triangles each).
+struct TraversalCounts {
+  std::uint64_t nodes = 0, blocks = 0;
+  TraversalCounts& operator+=(const TraversalCounts& o) {
+    nodes += o.nodes;
+    blocks += o.blocks;
+    return *this;
+  }
+};
+
+// Collapses the binary tree `bvh` over triangles into a wide one. Leaf i's triangles are
+// triangles[bvh.order[first .. first + count)] in the binary tree; here they must already be
+// stored in leaf order, so that the binary leaf [first, first + count) holds
+// triangles[first .. first + count). Appends the leaves' blocks to `blocks` (prim = index
+// into `triangles`).
+template <int N>
+WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
+                        std::vector<TriangleBlock>& blocks);
+
+}  // namespace rt2

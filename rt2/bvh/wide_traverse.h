@@ -1,0 +1,195 @@
+// rt2/bvh/wide_traverse.h — walking the wide BVH (wide_bvh.h) with one ray: the closest hit,
+// and an any-hit walk for shadow rays.
+//
+// A node is tested in one SIMD pass over its N child boxes (the slab test, Kay and Kajiya
+// 1986). The ray picks, once, its near and far box rows per axis from the signs of its
+// direction (Embree's TravRay), so a box test is a subtract and a multiply per plane and
+// no min/max between the planes of an axis. Robustness as in aabb.h (Ize 2013): the far
+// distance is scaled by 1 + 2 gamma(3) so that rounding never culls a box the ray touches,
+// and the NaN a ray in a slab's plane produces (0 * inf) is replaced by the neighbouring
+// bound, because maxps / minps return their second operand for NaN: such a ray counts as
+// inside the slab.
+//
+// Closest hit: the children a ray enters are visited nearest first; the others wait on a
+// stack with their entry distance and are dropped when a closer hit is found. Ties between
+// triangles at the same t go to the smaller triangle index, so the hit does not depend on
+// the order of the walk: BVH4 and BVH8 (and every ISA) give the same hit, bit for bit.
+// Any hit: no ordering at all; the walk stops as soon as `on_hit` says so.
+//
+// Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include "mlib/vfloat.h"
+#include "rt2/aabb.h"
+#include "rt2/bvh/wide_bvh.h"
+#include "rt2/geometry/triangle_block_intersect.h"
+
+namespace rt2::RT2_ISA {
+
+// The ray as the node test needs it, for N lanes.
+template <int N>
+struct NodeRay {
+  using V = mlib::vfloat<N>;
+  V org[3], inv[3];
+  int near[3], far[3];  // box rows (WideNode::bounds)
+
+  explicit NodeRay(const Ray& r) {
+    const RayPre pre(r);
+    for (int a = 0; a < 3; ++a) {
+      org[a] = V::broadcast(r.org[a]);
+      inv[a] = V::broadcast(pre.inv_dir[a]);
+      // 1/dir is +-inf for a zero component, with the zero's sign: the sign bit decides.
+      near[a] = 2 * a + (std::signbit(pre.inv_dir[a]) ? 1 : 0);
+      far[a] = near[a] ^ 1;
+    }
+  }
+
+  // Bit i set when child i's box is entered within [t_min, t_max]; its entry in `entry`.
+  MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max, V& entry) const {
+    V tn = t_min, tf = t_max;
+    for (int a = 0; a < 3; ++a) {
+      const V n = (V::load(node.bounds[near[a]]) - org[a]) * inv[a];
+      const V f = (V::load(node.bounds[far[a]]) - org[a]) * inv[a];
+      tn = max(n, tn);  // NaN n gives tn
+      tf = min(f, tf);
+    }
+    entry = tn;
+    return mlib::bits(tn <= tf * V::broadcast(kSlabPad));
+  }
+};
+
+// A pending subtree and the distance at which the ray enters it.
+struct StackEntry {
+  std::uint32_t ref;
+  float t;
+};
+
+// Deepest stack: each level of the tree pushes at most N - 1 entries.
+template <int N>
+inline constexpr int kStackSize = (N - 1) * (kMaxBvhDepth + 1) + 1;
+
+// The closest triangle hit by `ray` in (t_min, h.t), updating h (t, u, v and prim = the
+// triangle's index) when one is found; ties at equal t go to the smaller index. `test` is
+// a FastTriangleTest or a WatertightTriangleTest built from `ray`.
+template <int N, class Test>
+inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
+                             const Test& test, float t_min, Hit& h, TraversalCounts* counts) {
+  using V = mlib::vfloat<N>;
+  if (bvh.root == kNoChild) return;
+  const NodeRay<N> nr(ray);
+  const V t_min_v = V::broadcast(t_min);
+  const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
+  StackEntry stack[kStackSize<N>];
+  int sp = 0;
+  std::uint32_t ref = bvh.root;
+  alignas(64) float entry_t[N];
+  for (;;) {
+    // Down through inner nodes, nearest child first.
+    while (!(ref & kLeaf)) {
+      if (counts) ++counts->nodes;
+      const WideNode<N>& node = bvh.nodes[ref];
+      V entry;
+      unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t), entry);
+      if (mask == 0) goto pop;
+      entry.store(entry_t);
+      {
+        unsigned i = static_cast<unsigned>(std::countr_zero(mask));
+        mask &= mask - 1;
+        if (mask == 0) {  // one child: no stack
+          ref = node.child[i];
+          continue;
+        }
+        // Several: sort them by entry distance (insertion sort; usually 2 or 3) and push
+        // all but the nearest, farthest first.
+        StackEntry hit[N];
+        int k = 0;
+        hit[k++] = {node.child[i], entry_t[i]};
+        while (mask) {
+          i = static_cast<unsigned>(std::countr_zero(mask));
+          mask &= mask - 1;
+          StackEntry e{node.child[i], entry_t[i]};
+          int j = k++;
+          while (j > 0 && hit[j - 1].t < e.t) {  // descending
+            hit[j] = hit[j - 1];
+            --j;
+          }
+          hit[j] = e;
+        }
+        for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
+        ref = hit[k - 1].ref;
+      }
+    }
+    // A leaf: its blocks, until the one marked last.
+    for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
+      if (counts) ++counts->blocks;
+      const BlockHits bh = test(*b, t_min_4, vfloat4::broadcast(h.t));
+      for (unsigned m = bh.mask; m; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        const std::uint32_t prim = b->prim_of(l);
+        if (bh.t[l] < h.t || (bh.t[l] == h.t && h.found() && prim < h.prim)) {
+          h.t = bh.t[l];
+          h.u = bh.u[l];
+          h.v = bh.v[l];
+          h.prim = prim;
+        }
+      }
+      if (b->last()) break;
+    }
+  pop:
+    for (;;) {  // the next pending subtree that can still hold a closer hit (or a tie)
+      if (sp == 0) return;
+      const StackEntry e = stack[--sp];
+      if (e.t <= h.t * kSlabPad) {
+        ref = e.ref;
+        break;
+      }
+    }
+  }
+}
+
+// Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
+// order, until it returns true; returns whether it did.
+template <int N, class Test, class OnHit>
+inline bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
+                         const Test& test, float t_min, float t_max, OnHit&& on_hit,
+                         TraversalCounts* counts) {
+  using V = mlib::vfloat<N>;
+  if (bvh.root == kNoChild) return false;
+  const NodeRay<N> nr(ray);
+  const V t_min_v = V::broadcast(t_min), t_max_v = V::broadcast(t_max);
+  const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
+  // Inclusive upper bound of the block test, strictly below t_max.
+  const vfloat4 t_below_4 = vfloat4::broadcast(std::nextafter(t_max, -kInfinity));
+  std::uint32_t stack[kStackSize<N>];
+  int sp = 0;
+  std::uint32_t ref = bvh.root;
+  for (;;) {
+    while (!(ref & kLeaf)) {
+      if (counts) ++counts->nodes;
+      const WideNode<N>& node = bvh.nodes[ref];
+      V entry;
+      unsigned mask = nr.test(node, t_min_v, t_max_v, entry);
+      if (mask == 0) goto pop;
+      ref = node.child[std::countr_zero(mask)];
+      for (mask &= mask - 1; mask; mask &= mask - 1) stack[sp++] = node.child[std::countr_zero(mask)];
+    }
+    for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
+      if (counts) ++counts->blocks;
+      const BlockHits bh = test(*b, t_min_4, t_below_4);
+      for (unsigned m = bh.mask; m; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        if (on_hit(b->prim_of(l), bh.t[l])) return true;
+      }
+      if (b->last()) break;
+    }
+  pop:
+    if (sp == 0) return false;
+    ref = stack[--sp];
+  }
+}
+
+}  // namespace rt2::RT2_ISA

@@ -1,0 +1,146 @@
+// rt2/geometry/triangle_block_intersect.h — a ray against the four triangles of a
+// TriangleBlock in one SIMD pass: the thesis's fast test and the watertight test.
+//
+// Each lane computes exactly what the one-triangle tests of triangle.h compute, in the same
+// order (no FMA; the build forbids contraction): a block test and `intersect` /
+// `intersect_watertight` agree bit for bit on every hit (a test checks it), whatever the
+// instruction set. Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
+//
+// A test is a small object built once per ray (the ray's broadcast form, and for the
+// watertight test its shear); calling it on a block returns the bit mask of the lanes hit
+// with t in (t_min, t_max] and their t, u, v. The upper bound is inclusive so that the
+// closest-hit query can break ties between equal t by triangle index (wide_traverse.h).
+#pragma once
+
+#include "mlib/vfloat.h"
+#include "rt2/geometry/triangle.h"
+#include "rt2/geometry/triangle_block.h"
+
+#if !defined(RT2_ISA)
+#error "ray kernels are compiled per instruction set: build this file with -DRT2_ISA=<name>"
+#endif
+
+namespace rt2::RT2_ISA {
+
+using mlib::vbool4;
+using mlib::vfloat4;
+
+// Lane hits of one block: bit i of `mask` set when lane i is hit.
+struct BlockHits {
+  unsigned mask = 0;
+  alignas(16) float t[4], u[4], v[4];
+};
+
+// The thesis's test (formula 10), four triangles at a time. A ray parallel to a triangle
+// divides by zero and fails every comparison; an empty lane (NaN) likewise.
+struct FastTriangleTest {
+  vfloat4 org[3], dir[3];
+
+  explicit FastTriangleTest(const Ray& r) {
+    for (int a = 0; a < 3; ++a) {
+      org[a] = vfloat4::broadcast(r.org[a]);
+      dir[a] = vfloat4::broadcast(r.dir[a]);
+    }
+  }
+
+  MLIB_INLINE BlockHits operator()(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
+    BlockHits h;
+    vfloat4 v0[3], e1[3], e2[3], n[3], tv[3];
+    for (int a = 0; a < 3; ++a) {
+      v0[a] = vfloat4::load(b.v0[a]);
+      e1[a] = v0[a] - vfloat4::load(b.v1[a]);  // E1 = V0 - V1
+      e2[a] = vfloat4::load(b.v2[a]) - v0[a];  // E2 = V2 - V0
+      n[a] = vfloat4::load(b.n[a]);
+      tv[a] = v0[a] - org[a];  // T = V0 - P
+    }
+    // S = T x Dir
+    const vfloat4 s[3] = {tv[1] * dir[2] - tv[2] * dir[1], tv[2] * dir[0] - tv[0] * dir[2],
+                          tv[0] * dir[1] - tv[1] * dir[0]};
+    const auto dot = [](const vfloat4* p, const vfloat4* q) {
+      return (p[0] * q[0] + p[1] * q[1]) + p[2] * q[2];
+    };
+    const vfloat4 den = dot(dir, n);
+    const vfloat4 su = dot(s, e2), sv = dot(s, e1);
+    // u >= 0 and v >= 0 need S·E2 and S·E1 on the side of Dir·N: rejects most lanes before
+    // dividing (the same lanes the divided test rejects, up to the sign of an underflow).
+    const vfloat4 zero = vfloat4::broadcast(0.0f);
+    if (!mlib::bits((mlib::xor_sign(su, den) >= zero) & (mlib::xor_sign(sv, den) >= zero)))
+      return h;
+    const vfloat4 t = dot(tv, n) / den, u = su / den, v = sv / den;
+    h.mask = mlib::bits((t > t_min) & (t <= t_max) & (u >= zero) & (v >= zero) &
+                        (u + v <= vfloat4::broadcast(1.0f)));
+    t.store(h.t);
+    u.store(h.u);
+    v.store(h.v);
+    return h;
+  }
+};
+
+// The watertight test of Woop, Benthin and Wald (JCGT 2013), four triangles at a time: the
+// same shear (WatertightRay) and edge functions as intersect_watertight, with its double
+// precision re-evaluation for a lane whose edge function is exactly zero.
+struct WatertightTriangleTest {
+  WatertightRay ray;
+  vfloat4 org[3], sx, sy, sz;
+
+  explicit WatertightTriangleTest(const Ray& r) : ray(r) {
+    for (int a = 0; a < 3; ++a) org[a] = vfloat4::broadcast(r.org[a]);
+    sx = vfloat4::broadcast(ray.sx);
+    sy = vfloat4::broadcast(ray.sy);
+    sz = vfloat4::broadcast(ray.sz);
+  }
+
+  MLIB_INLINE BlockHits operator()(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
+    BlockHits h;
+    const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+    // Vertices relative to the origin, in the ray's permuted axes.
+    const vfloat4 az_ = vfloat4::load(b.v0[kz]) - org[kz];
+    const vfloat4 bz_ = vfloat4::load(b.v1[kz]) - org[kz];
+    const vfloat4 cz_ = vfloat4::load(b.v2[kz]) - org[kz];
+    // ... and sheared into the ray's 2D frame.
+    const vfloat4 ax = (vfloat4::load(b.v0[kx]) - org[kx]) - sx * az_;
+    const vfloat4 ay = (vfloat4::load(b.v0[ky]) - org[ky]) - sy * az_;
+    const vfloat4 bx = (vfloat4::load(b.v1[kx]) - org[kx]) - sx * bz_;
+    const vfloat4 by = (vfloat4::load(b.v1[ky]) - org[ky]) - sy * bz_;
+    const vfloat4 cx = (vfloat4::load(b.v2[kx]) - org[kx]) - sx * cz_;
+    const vfloat4 cy = (vfloat4::load(b.v2[ky]) - org[ky]) - sy * cz_;
+    vfloat4 eu = cx * by - cy * bx;
+    vfloat4 ev = ax * cy - ay * cx;
+    vfloat4 ew = bx * ay - by * ax;
+    const vfloat4 zero = vfloat4::broadcast(0.0f);
+    const unsigned on_edge = mlib::bits((eu == zero) | (ev == zero) | (ew == zero));
+    if (on_edge) refine_in_double(on_edge, ax, ay, bx, by, cx, cy, eu, ev, ew);
+    const vbool4 outside = ((eu < zero) | (ev < zero) | (ew < zero)) &
+                           ((eu > zero) | (ev > zero) | (ew > zero));
+    const vfloat4 det = (eu + ev) + ew;
+    const vbool4 ok = andnot(outside, det != zero) & (det == det);  // not parallel, not NaN
+    if (!mlib::bits(ok)) return h;
+    const vfloat4 inv = vfloat4::broadcast(1.0f) / det;
+    const vfloat4 t = ((eu * (sz * az_) + ev * (sz * bz_)) + ew * (sz * cz_)) * inv;
+    h.mask = mlib::bits(ok & (t > t_min) & (t <= t_max));
+    t.store(h.t);
+    (ev * inv).store(h.u);
+    (ew * inv).store(h.v);
+    return h;
+  }
+
+ private:
+  // The paper's fallback: lanes with an edge function exactly 0 are recomputed in double.
+  [[gnu::noinline]] static void refine_in_double(unsigned lanes, vfloat4 ax, vfloat4 ay,
+                                                 vfloat4 bx, vfloat4 by, vfloat4 cx,
+                                                 vfloat4 cy, vfloat4& eu, vfloat4& ev,
+                                                 vfloat4& ew) {
+    alignas(16) float Ax[4], Ay[4], Bx[4], By[4], Cx[4], Cy[4], U[4], V[4], W[4];
+    ax.store(Ax), ay.store(Ay), bx.store(Bx), by.store(By), cx.store(Cx), cy.store(Cy);
+    eu.store(U), ev.store(V), ew.store(W);
+    for (int l = 0; l < 4; ++l) {
+      if (!(lanes >> l & 1)) continue;
+      U[l] = static_cast<float>(double(Cx[l]) * By[l] - double(Cy[l]) * Bx[l]);
+      V[l] = static_cast<float>(double(Ax[l]) * Cy[l] - double(Ay[l]) * Cx[l]);
+      W[l] = static_cast<float>(double(Bx[l]) * Ay[l] - double(By[l]) * Ax[l]);
+    }
+    eu = vfloat4::load(U), ev = vfloat4::load(V), ew = vfloat4::load(W);
+  }
+};
+
+}  // namespace rt2::RT2_ISA

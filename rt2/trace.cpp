@@ -1,0 +1,33 @@
+// rt2/trace.cpp — batch ray queries through the instruction set's kernels (trace.h).
+#include "rt2/trace.h"
+
+#include "rt2/isa_kernels.h"
+
+namespace rt2 {
+
+void trace_closest(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                   const float* t_max, std::size_t n, Hit* hits, TraversalCounts* counts) {
+  isa_kernels(acc.isa).trace_closest[options.watertight](acc, rays, t_max, n, hits, counts);
+}
+
+void trace_occluded(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                    const float* t_max, std::size_t n, std::uint8_t* occluded,
+                    TraversalCounts* counts) {
+  isa_kernels(acc.isa).trace_occluded[options.watertight](acc, rays, t_max, n, occluded, counts);
+}
+
+Hit trace_closest(const Accel& acc, const Ray& ray, float t_max, const TraceOptions& options) {
+  Hit h;
+  trace_closest(acc, options, &ray, &t_max, 1, &h);
+  return h;
+}
+
+bool trace_occluded(const Accel& acc, const Ray& ray, float t_max, const TraceOptions& options) {
+  std::uint8_t o = 0;
+  trace_occluded(acc, options, &ray, &t_max, 1, &o);
+  return o != 0;
+}
+
+std::size_t accel_bytes(const Accel& acc) { return acc.bvh_bytes(); }
+
+}  // namespace rt2

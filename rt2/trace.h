@@ -1,0 +1,39 @@
+// rt2/trace.h — batch ray queries against an Accel, for tests and benchmarks: arrays of
+// rays traced with the Accel's instruction set (rt2/isa.h) and the chosen triangle test.
+// One table lookup per call, none per ray. The renderer does not use these: its kernel
+// calls the same queries inline (rt2/query.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "rt2/accel.h"
+
+namespace rt2 {
+
+struct TraceOptions {
+  bool watertight = false;  // the triangle test: the thesis's fast one, or the watertight one
+};
+
+// hits[i] = the closest hit of rays[i] in (0, t_max[i]) over planes, spheres and triangles
+// (miss: !found(), t = inf). `counts`, when given, accumulates nodes and blocks visited.
+void trace_closest(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                   const float* t_max, std::size_t n, Hit* hits,
+                   TraversalCounts* counts = nullptr);
+
+// occluded[i] = 1 when any primitive lies on rays[i] in (0, t_max[i]) (every surface
+// opaque), else 0.
+void trace_occluded(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                    const float* t_max, std::size_t n, std::uint8_t* occluded,
+                    TraversalCounts* counts = nullptr);
+
+// One ray: the closest hit in (0, t_max), and whether anything lies in (0, t_max).
+Hit trace_closest(const Accel& acc, const Ray& ray, float t_max = kInfinity,
+                  const TraceOptions& options = {});
+bool trace_occluded(const Accel& acc, const Ray& ray, float t_max,
+                    const TraceOptions& options = {});
+
+// Bytes the acceleration structure occupies (Accel::bvh_bytes).
+std::size_t accel_bytes(const Accel& acc);
+
+}  // namespace rt2
