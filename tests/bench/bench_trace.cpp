@@ -52,10 +52,13 @@
 //   engine=embree    rtcIntersect1 / rtcOccluded1 per ray, tnear = 0, tfar = t_max;
 //   engine=embree16  rtcIntersect16 / rtcOccluded16 per 4 x 4 tile (primary and shadow
 //                    only; a lane is invalid where the primary ray missed).
+// Embree picks the widest instruction set of the CPU (rt2 is built for scons arch=...);
+// --embree-config isa=sse4.2 (or avx2, ...) holds it to a narrower one.
 // Build time: one thread, the median of --build-reps builds (5; interleaved like the
-// runs): rt2's Accel::build, Embree's rtcCommitScene on a device created with "threads=1". Bytes per triangle: rt2's
-// accel_bytes; Embree's net bytes allocated during rtcCommitScene (its memory monitor: BVH
-// and leaf triangles; the shared vertex and index arrays are the application's).
+// runs): rt2's Accel::build, Embree's rtcCommitScene on a device created with "threads=1".
+// Bytes per triangle: rt2's accel_bytes; Embree's net bytes allocated during rtcCommitScene
+// (its memory monitor: BVH and leaf triangles; the shared vertex and index arrays are the
+// application's).
 //
 // OUTPUT. Everything on stdout is `key=value` lines (progress goes to stderr):
 //   cpu="..." hw_threads=N
@@ -421,6 +424,12 @@ struct Options {
   int width = 1024, height = 768, reps = 7, build_reps = 5, show = 0;
   std::size_t incoherent_rays = std::size_t(1) << 20, chunk = 4096;
   bool embree = false;
+  std::string embree_config;  // appended to every Embree device's configuration
+  // The configuration string of an Embree device: `base` plus embree_config.
+  std::string device_config(const std::string& base) const {
+    return base.empty() || embree_config.empty() ? base + embree_config
+                                                 : base + "," + embree_config;
+  }
 };
 
 #if defined(RT2_HAVE_EMBREE)
@@ -479,7 +488,8 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
   // One thread: Embree's TBB scheduler is capped by a process-wide tbb::global_control,
   // which would cap bench_trace's own loops too, so this device is released before any
   // tracing (the tracing device keeps the default thread count).
-  RTCDevice dev = o.embree ? bench::embree_device("threads=1") : nullptr;
+  RTCDevice dev =
+      o.embree ? bench::embree_device(o.device_config("threads=1").c_str()) : nullptr;
 #endif
   for (int rep = 0; rep < o.build_reps; ++rep) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -611,6 +621,9 @@ int parse(int argc, char** argv, Options& o) {
   app.add_option("--chunk", o.chunk, "rays per parallel task (default 4096; a multiple of 16)")
       ->check(CLI::Range(std::size_t(16), std::size_t(1) << 24));
   app.add_flag("--no-embree", no_embree, "rt2 only, even when built with Embree");
+  app.add_option("--embree-config", o.embree_config,
+                 "added to Embree's device configuration, e.g. isa=sse4.2 to hold Embree to "
+                 "rt2's instruction set");
   app.add_option("--show", o.show, "print up to N differing rays per comparison to stderr")
       ->check(CLI::Range(0, 1000000));
   try {
@@ -677,11 +690,13 @@ int main(int argc, char** argv) {
               compiled_isa().c_str(), o.chunk);
 #if defined(RT2_HAVE_EMBREE)
   if (o.embree) {
-    RTCDevice probe = bench::embree_device(nullptr);
-    std::printf("embree=%s embree_native_ray16=%zd embree_tasking=%s\n", RTC_VERSION_STRING,
+    RTCDevice probe = bench::embree_device(o.device_config("").c_str());
+    std::printf("embree=%s embree_native_ray16=%zd embree_tasking=%s embree_config=\"%s\"\n",
+                RTC_VERSION_STRING,
                 rtcGetDeviceProperty(probe, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED),
                 rtcGetDeviceProperty(probe, RTC_DEVICE_PROPERTY_TASKING_SYSTEM) == 1 ? "tbb"
-                                                                                     : "internal");
+                                                                                     : "internal",
+                o.embree_config.c_str());
     rtcReleaseDevice(probe);
   } else {
     std::printf("embree=off\n");
@@ -696,7 +711,7 @@ int main(int argc, char** argv) {
   const rt2::Accel acc = build_and_report(o, m);
   EmbreeScene embree_scenes[2] = {nullptr, nullptr};
 #if defined(RT2_HAVE_EMBREE)
-  RTCDevice dev = o.embree ? bench::embree_device(nullptr) : nullptr;
+  RTCDevice dev = o.embree ? bench::embree_device(o.device_config("").c_str()) : nullptr;
   if (dev)
     for (bool watertight : o.tests) {
       RTCScene s = bench::embree_scene(dev, m.mesh(), watertight);
