@@ -134,7 +134,6 @@ constexpr double kAbsTol = 1e-6;  // times S: distances closer than this are the
 
 // --- ray sets -------------------------------------------------------------------------
 
-
 RaySet primary_set(const rt2::Camera& cam, int w, int h) {
   RaySet s;
   s.name = "primary";
