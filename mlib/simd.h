@@ -17,6 +17,14 @@
 #define MLIB_INLINE inline
 #endif
 
+namespace mlib {
+// Asks for the `lines` cache lines from p on (into every cache level), without waiting: a
+// hint, never a fault, whatever p is.
+MLIB_INLINE void prefetch(const void* p, int lines = 1) {
+  for (int i = 0; i < lines; ++i) __builtin_prefetch(static_cast<const char*>(p) + 64 * i, 0, 3);
+}
+}  // namespace mlib
+
 // MLIB_SCALAR (scons arch=scalar) swaps the whole file for the same API in plain lane-by-
 // lane C++: the thesis's "no SIMD" baseline, measured against the SSE code below. Nothing
 // above this layer changes, so the two builds differ only in how f4 is computed.

@@ -1,4 +1,9 @@
 // rt2/bvh/build.cpp — top-down BVH construction: midpoint or binned SAH splits.
+//
+// The primitives travel as 32-byte records (box and index) that each split partitions in
+// place, so every pass over a node's primitives reads memory in order. A node's bounds and
+// centroid bounds come from its parent's bins (or, after a median split, from one pass),
+// and one pass bins all three axes at once.
 #include "rt2/bvh/build.h"
 
 #include <algorithm>
@@ -13,25 +18,66 @@ namespace {
 
 constexpr std::uint32_t kMedianBelowDepth = 64;
 
+// A primitive's box and its index, 32 bytes.
+struct PrimBox {
+  float lo[3];
+  std::uint32_t index;
+  float hi[3];
+  std::uint32_t pad;
+  vec4 lo4() const { return mlib::load_xyz(lo); }
+  vec4 hi4() const { return mlib::load_xyz(hi); }
+  vec4 centroid2() const { return lo4() + hi4(); }  // twice the centroid
+};
+static_assert(sizeof(PrimBox) == 32);
+
+struct Bin {
+  Aabb box, cbox;  // the primitives' boxes, and their (doubled) centroids
+  std::uint32_t count = 0;
+};
+
 class Builder {
  public:
   Builder(const std::vector<Aabb>& boxes, const BvhConfig& config, Bvh& out)
-      : boxes_(boxes), config_(config), out_(out) {
-    centroids_.reserve(boxes.size());
-    for (const Aabb& b : boxes) centroids_.push_back(b.center());
-    out_.order.resize(boxes.size());
-    for (std::uint32_t i = 0; i < boxes.size(); ++i) out_.order[i] = i;
+      : config_(config), out_(out), bins_(3 * std::size_t(config.sah_bins)),
+        right_(std::size_t(config.sah_bins)) {
+    prims_.resize(boxes.size());
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+      for (int a = 0; a < 3; ++a) {
+        prims_[i].lo[a] = boxes[i].lo[a];
+        prims_[i].hi[a] = boxes[i].hi[a];
+      }
+      prims_[i].index = i;
+      prims_[i].pad = 0;
+    }
+    // A full binary tree over n primitives has at most 2n - 1 nodes.
     out_.nodes.reserve(2 * boxes.size());
   }
 
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::uint32_t depth) {
+  void run() {
+    Aabb bounds, cbounds;
+    measure(0, static_cast<std::uint32_t>(prims_.size()), bounds, cbounds);
+    build(0, static_cast<std::uint32_t>(prims_.size()), bounds, cbounds, 0);
+    out_.order.resize(prims_.size());
+    for (std::size_t i = 0; i < prims_.size(); ++i) out_.order[i] = prims_[i].index;
+    out_.nodes.shrink_to_fit();
+  }
+
+ private:
+  // Bounds and (doubled) centroid bounds of prims_[begin, end).
+  void measure(std::uint32_t begin, std::uint32_t end, Aabb& bounds, Aabb& cbounds) const {
+    bounds = cbounds = Aabb();
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const vec4 lo = prims_[i].lo4(), hi = prims_[i].hi4();
+      bounds.lo = mlib::min(bounds.lo, lo);
+      bounds.hi = mlib::max(bounds.hi, hi);
+      cbounds.grow(lo + hi);
+    }
+  }
+
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, const Aabb& bounds,
+                      const Aabb& cbounds, std::uint32_t depth) {
     const auto index = static_cast<std::uint32_t>(out_.nodes.size());
     out_.nodes.emplace_back();
-    Aabb bounds, cbounds;
-    for (std::uint32_t i = begin; i < end; ++i) {
-      bounds.grow(boxes_[out_.order[i]]);
-      cbounds.grow(centroids_[out_.order[i]]);
-    }
     BvhNode& node = out_.nodes[index];
     for (int a = 0; a < 3; ++a) {
       // Padded by 4 ulps of the coordinates: the triangle test rounds too, and may accept a
@@ -52,34 +98,38 @@ class Builder {
       st.max_leaf_prims = std::max(st.max_leaf_prims, count);
       return index;
     }
-    const std::uint32_t mid = split(begin, end, cbounds, depth);
-    build(begin, mid, depth + 1);
-    const std::uint32_t right = build(mid, end, depth + 1);
+    Aabb lb, lcb, rb, rcb;
+    const std::uint32_t mid = split(begin, end, cbounds, depth, lb, lcb, rb, rcb);
+    build(begin, mid, lb, lcb, depth + 1);
+    const std::uint32_t right = build(mid, end, rb, rcb, depth + 1);
     out_.nodes[index].offset = right;  // `node` may dangle: the vector grew
     out_.nodes[index].count = 0;
     return index;
   }
 
- private:
-  float centroid(std::uint32_t prim, int axis) const { return centroids_[prim][axis]; }
-
-  // Partitions [begin, end) and returns the first index of the right side, never begin
-  // or end.
+  // Partitions [begin, end) and returns the first index of the right side, never begin or
+  // end, with the bounds and centroid bounds of both sides.
   std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds,
-                      std::uint32_t depth) {
+                      std::uint32_t depth, Aabb& lb, Aabb& lcb, Aabb& rb, Aabb& rcb) {
     const int axis = cbounds.longest_axis();
     const bool flat = !(cbounds.extent()[axis] > 0.0f);
-    if (flat || depth >= kMedianBelowDepth) return median(begin, end, axis);
-    const std::uint32_t mid = config_.split == Split::sah ? sah(begin, end, cbounds)
-                                                          : midpoint(begin, end, cbounds, axis);
-    return mid == begin || mid == end ? median(begin, end, axis) : mid;
+    std::uint32_t mid = begin;
+    if (!flat && depth < kMedianBelowDepth) {
+      mid = config_.split == Split::sah ? sah(begin, end, cbounds, lb, lcb, rb, rcb)
+                                        : midpoint(begin, end, cbounds, axis);
+      if (mid != begin && mid != end && config_.split == Split::sah) return mid;
+    }
+    if (mid == begin || mid == end) mid = median(begin, end, axis);
+    measure(begin, mid, lb, lcb);
+    measure(mid, end, rb, rcb);
+    return mid;
   }
 
   std::uint32_t median(std::uint32_t begin, std::uint32_t end, int axis) {
     const std::uint32_t mid = begin + (end - begin) / 2;
-    auto* o = out_.order.data();
-    std::nth_element(o + begin, o + mid, o + end, [&](std::uint32_t a, std::uint32_t b) {
-      return centroid(a, axis) < centroid(b, axis);
+    PrimBox* p = prims_.data();
+    std::nth_element(p + begin, p + mid, p + end, [axis](const PrimBox& a, const PrimBox& b) {
+      return a.lo[axis] + a.hi[axis] < b.lo[axis] + b.hi[axis];
     });
     return mid;
   }
@@ -87,51 +137,59 @@ class Builder {
   // The thesis: cut the box in the middle of its longest axis.
   std::uint32_t midpoint(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds, int axis) {
     const float cut = cbounds.center()[axis];
-    auto* o = out_.order.data();
-    auto* m = std::partition(o + begin, o + end,
-                             [&](std::uint32_t p) { return centroid(p, axis) < cut; });
-    return static_cast<std::uint32_t>(m - o);
+    PrimBox* p = prims_.data();
+    PrimBox* m = std::partition(p + begin, p + end, [&](const PrimBox& b) {
+      return b.lo[axis] + b.hi[axis] < cut;
+    });
+    return static_cast<std::uint32_t>(m - p);
   }
 
-  // Binned SAH (Wald 2007): for each axis, centroids go into bins; the plane between two
-  // bins minimising A_left * N_left + A_right * N_right wins.
-  std::uint32_t sah(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds) {
+  // Binned SAH (Wald 2007): centroids go into bins along each axis (all three in one pass);
+  // the plane between two bins minimising A_left * cost(N_left) + A_right * cost(N_right)
+  // wins, where cost(n) counts blocks of config.sah_block primitives (Embree's rule: a leaf
+  // is tested a block at a time, so 4 triangles cost as much as 1). Returns begin when no
+  // plane separates anything.
+  std::uint32_t sah(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds, Aabb& lb,
+                    Aabb& lcb, Aabb& rb, Aabb& rcb) {
     const int bins = config_.sah_bins;
-    struct Bin {
-      Aabb box;
-      std::uint32_t count = 0;
-    };
-    std::vector<Bin> bin(bins);
-    std::vector<float> right_area(bins);
-    std::vector<std::uint32_t> right_count(bins);
+    const std::uint32_t block = config_.sah_block, shift = block - 1;
+    const vec4 lo = cbounds.lo, extent = cbounds.extent();
+    float scale[3];
+    for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? float(bins) / extent[a] : 0.0f;
+    std::fill(bins_.begin(), bins_.end(), Bin{});
+    Bin* bx = bins_.data();
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const PrimBox& p = prims_[i];
+      const vec4 plo = p.lo4(), phi = p.hi4(), c = plo + phi;
+      for (int a = 0; a < 3; ++a) {
+        Bin& b = bx[a * bins + bin_of(c[a], lo[a], scale[a], bins)];
+        b.box.lo = mlib::min(b.box.lo, plo);
+        b.box.hi = mlib::max(b.box.hi, phi);
+        b.cbox.grow(c);
+        ++b.count;
+      }
+    }
     float best_cost = kInfinity;
     int best_axis = -1, best_plane = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const float lo = cbounds.lo[axis], extent = cbounds.extent()[axis];
-      if (!(extent > 0.0f)) continue;
-      const float scale = float(bins) / extent;
-      std::fill(bin.begin(), bin.end(), Bin{});
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const std::uint32_t p = out_.order[i];
-        Bin& b = bin[bin_of(centroid(p, axis), lo, scale, bins)];
-        b.box.grow(boxes_[p]);
-        ++b.count;
-      }
+      if (!(extent[axis] > 0.0f)) continue;
+      const Bin* b = bx + axis * bins;
       Aabb acc;
       std::uint32_t n = 0;
       for (int k = bins - 1; k > 0; --k) {  // right side of plane k-1 | k
-        acc.grow(bin[k].box);
-        n += bin[k].count;
-        right_area[k] = acc.area();
-        right_count[k] = n;
+        acc.grow(b[k].box);
+        n += b[k].count;
+        right_[k] = {acc.area(), n};
       }
       acc = Aabb();
       n = 0;
       for (int k = 0; k < bins - 1; ++k) {  // plane between bin k and bin k+1
-        acc.grow(bin[k].box);
-        n += bin[k].count;
-        if (n == 0 || right_count[k + 1] == 0) continue;
-        const float cost = acc.area() * float(n) + right_area[k + 1] * float(right_count[k + 1]);
+        acc.grow(b[k].box);
+        n += b[k].count;
+        const std::uint32_t rn = right_[k + 1].count;
+        if (n == 0 || rn == 0) continue;
+        const float cost = acc.area() * float((n + shift) / block) +
+                           right_[k + 1].area * float((rn + shift) / block);
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -139,14 +197,21 @@ class Builder {
         }
       }
     }
-    if (best_axis < 0) return begin;  // no plane separates anything: median fallback
-    const float lo = cbounds.lo[best_axis];
-    const float scale = float(bins) / cbounds.extent()[best_axis];
-    auto* o = out_.order.data();
-    auto* m = std::partition(o + begin, o + end, [&](std::uint32_t p) {
-      return bin_of(centroid(p, best_axis), lo, scale, bins) <= best_plane;
+    if (best_axis < 0) return begin;
+    lb = lcb = rb = rcb = Aabb();
+    const Bin* b = bx + best_axis * bins;
+    for (int k = 0; k < bins; ++k) {
+      Aabb& box = k <= best_plane ? lb : rb;
+      Aabb& cbox = k <= best_plane ? lcb : rcb;
+      box.grow(b[k].box);
+      cbox.grow(b[k].cbox);
+    }
+    const float l = lo[best_axis], s = scale[best_axis];
+    PrimBox* p = prims_.data();
+    PrimBox* m = std::partition(p + begin, p + end, [&](const PrimBox& q) {
+      return bin_of(q.lo[best_axis] + q.hi[best_axis], l, s, bins) <= best_plane;
     });
-    return static_cast<std::uint32_t>(m - o);
+    return static_cast<std::uint32_t>(m - p);
   }
 
   static int bin_of(float c, float lo, float scale, int bins) {
@@ -154,10 +219,16 @@ class Builder {
     return std::clamp(k, 0, bins - 1);
   }
 
-  const std::vector<Aabb>& boxes_;
+  struct Side {
+    float area;
+    std::uint32_t count;
+  };
+
   const BvhConfig& config_;
   Bvh& out_;
-  std::vector<vec4> centroids_;
+  std::vector<PrimBox> prims_;
+  std::vector<Bin> bins_;    // [axis][bin]
+  std::vector<Side> right_;  // [bin]: what lies right of the plane before it
 };
 
 }  // namespace
@@ -166,12 +237,11 @@ Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config) {
   if (config.max_leaf_size == 0) throw Error("BVH max leaf size must be >= 1");
   if (config.sah_bins < 2 || config.sah_bins > 1024)
     throw Error("BVH SAH bins must be in [2, 1024]");
+  if (config.sah_block < 1 || config.sah_block > 64)
+    throw Error("BVH SAH block size must be in [1, 64]");
   const auto t0 = std::chrono::steady_clock::now();
   Bvh bvh;
-  if (!boxes.empty()) {
-    Builder builder(boxes, config, bvh);
-    builder.build(0, static_cast<std::uint32_t>(boxes.size()), 0);
-  }
+  if (!boxes.empty()) Builder(boxes, config, bvh).run();
   bvh.stats.nodes = static_cast<std::uint32_t>(bvh.nodes.size());
   bvh.stats.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -72,17 +72,35 @@ struct StackEntry {
 template <int N>
 inline constexpr int kStackSize = (N - 1) * (kMaxBvhDepth + 1) + 1;
 
+// Lines of a node, and of a leaf block, fetched together when the walk decides to go there:
+// the first one would stall anyway, the others then arrive during that wait.
+template <int N>
+inline constexpr int kNodeLines = int(sizeof(WideNode<N>) / 64);
+inline constexpr int kBlockLines = 3;
+
+template <int N>
+MLIB_INLINE void prefetch_ref(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                              std::uint32_t ref) {
+  if (ref & kLeaf)
+    mlib::prefetch(blocks + (ref & ~kLeaf), kBlockLines);
+  else
+    mlib::prefetch(&bvh.nodes[ref], kNodeLines<N>);
+}
+
 // The closest triangle hit by `ray` in (t_min, h.t), updating h (t, u, v and prim = the
 // triangle's index) when one is found; ties at equal t go to the smaller index. `test` is
 // a FastTriangleTest or a WatertightTriangleTest built from `ray`.
-template <int N, class Test>
-inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
-                             const Test& test, float t_min, Hit& h, TraversalCounts* counts) {
+template <int N, class Test, bool Count>
+inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                  const Ray& ray, const Test& test, float t_min, Hit& result,
+                                  TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   if (bvh.root == kNoChild) return;
   const NodeRay<N> nr(ray);
   const V t_min_v = V::broadcast(t_min);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
+  Hit h = result;  // a local: no store below can alias it
+  TraversalCounts local;
   StackEntry stack[kStackSize<N>];
   int sp = 0;
   std::uint32_t ref = bvh.root;
@@ -90,21 +108,22 @@ inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
   for (;;) {
     // Down through inner nodes, nearest child first.
     while (!(ref & kLeaf)) {
-      if (counts) ++counts->nodes;
+      if constexpr (Count) ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
       unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t), entry);
       if (mask == 0) goto pop;
-      entry.store(entry_t);
       {
         unsigned i = static_cast<unsigned>(std::countr_zero(mask));
         mask &= mask - 1;
         if (mask == 0) {  // one child: no stack
           ref = node.child[i];
+          prefetch_ref(bvh, blocks, ref);
           continue;
         }
         // Several: sort them by entry distance (insertion sort; usually 2 or 3) and push
         // all but the nearest, farthest first.
+        entry.store(entry_t);
         StackEntry hit[N];
         int k = 0;
         hit[k++] = {node.child[i], entry_t[i]};
@@ -112,6 +131,7 @@ inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
           i = static_cast<unsigned>(std::countr_zero(mask));
           mask &= mask - 1;
           StackEntry e{node.child[i], entry_t[i]};
+          prefetch_ref(bvh, blocks, e.ref);
           int j = k++;
           while (j > 0 && hit[j - 1].t < e.t) {  // descending
             hit[j] = hit[j - 1];
@@ -121,11 +141,12 @@ inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
         }
         for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
         ref = hit[k - 1].ref;
+        prefetch_ref(bvh, blocks, ref);
       }
     }
     // A leaf: its blocks, until the one marked last.
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-      if (counts) ++counts->blocks;
+      if constexpr (Count) ++local.blocks;
       const BlockHits bh = test(*b, t_min_4, vfloat4::broadcast(h.t));
       for (unsigned m = bh.mask; m; m &= m - 1) {
         const int l = std::countr_zero(m);
@@ -141,7 +162,11 @@ inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
     }
   pop:
     for (;;) {  // the next pending subtree that can still hold a closer hit (or a tie)
-      if (sp == 0) return;
+      if (sp == 0) {
+        result = h;
+        if constexpr (Count) *counts += local;
+        return;
+      }
       const StackEntry e = stack[--sp];
       if (e.t <= h.t * kSlabPad) {
         ref = e.ref;
@@ -151,12 +176,22 @@ inline void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
   }
 }
 
+template <int N, class Test>
+MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                  const Ray& ray, const Test& test, float t_min, Hit& h,
+                                  TraversalCounts* counts) {
+  if (counts)
+    closest_triangle_walk<N, Test, true>(bvh, blocks, ray, test, t_min, h, counts);
+  else
+    closest_triangle_walk<N, Test, false>(bvh, blocks, ray, test, t_min, h, counts);
+}
+
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
 // order, until it returns true; returns whether it did.
-template <int N, class Test, class OnHit>
-inline bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
-                         const Test& test, float t_min, float t_max, OnHit&& on_hit,
-                         TraversalCounts* counts) {
+template <int N, class Test, bool Count, class OnHit>
+inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
+                              const Test& test, float t_min, float t_max, OnHit&& on_hit,
+                              TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   if (bvh.root == kNoChild) return false;
   const NodeRay<N> nr(ray);
@@ -164,32 +199,52 @@ inline bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, con
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   // Inclusive upper bound of the block test, strictly below t_max.
   const vfloat4 t_below_4 = vfloat4::broadcast(std::nextafter(t_max, -kInfinity));
+  TraversalCounts local;
   std::uint32_t stack[kStackSize<N>];
   int sp = 0;
   std::uint32_t ref = bvh.root;
+  bool stopped = false;
   for (;;) {
     while (!(ref & kLeaf)) {
-      if (counts) ++counts->nodes;
+      if constexpr (Count) ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
       unsigned mask = nr.test(node, t_min_v, t_max_v, entry);
       if (mask == 0) goto pop;
       ref = node.child[std::countr_zero(mask)];
-      for (mask &= mask - 1; mask; mask &= mask - 1) stack[sp++] = node.child[std::countr_zero(mask)];
+      prefetch_ref(bvh, blocks, ref);
+      for (mask &= mask - 1; mask; mask &= mask - 1) {
+        stack[sp++] = node.child[std::countr_zero(mask)];
+        prefetch_ref(bvh, blocks, stack[sp - 1]);
+      }
     }
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-      if (counts) ++counts->blocks;
+      if constexpr (Count) ++local.blocks;
       const BlockHits bh = test(*b, t_min_4, t_below_4);
       for (unsigned m = bh.mask; m; m &= m - 1) {
         const int l = std::countr_zero(m);
-        if (on_hit(b->prim_of(l), bh.t[l])) return true;
+        if (on_hit(b->prim_of(l), bh.t[l])) {
+          stopped = true;
+          goto done;
+        }
       }
       if (b->last()) break;
     }
   pop:
-    if (sp == 0) return false;
+    if (sp == 0) goto done;
     ref = stack[--sp];
   }
+done:
+  if constexpr (Count) *counts += local;
+  return stopped;
+}
+
+template <int N, class Test, class OnHit>
+MLIB_INLINE bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
+                              const Test& test, float t_min, float t_max, OnHit&& on_hit,
+                              TraversalCounts* counts) {
+  return counts ? any_triangle_walk<N, Test, true>(bvh, blocks, ray, test, t_min, t_max, on_hit, counts)
+                : any_triangle_walk<N, Test, false>(bvh, blocks, ray, test, t_min, t_max, on_hit, counts);
 }
 
 }  // namespace rt2::RT2_ISA

@@ -45,14 +45,16 @@ struct FastTriangleTest {
 
   MLIB_INLINE BlockHits operator()(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
     BlockHits h;
-    vfloat4 v0[3], e1[3], e2[3], n[3], tv[3];
+    vfloat4 v0[3], e1[3], e2[3], tv[3];
     for (int a = 0; a < 3; ++a) {
       v0[a] = vfloat4::load(b.v0[a]);
       e1[a] = v0[a] - vfloat4::load(b.v1[a]);  // E1 = V0 - V1
       e2[a] = vfloat4::load(b.v2[a]) - v0[a];  // E2 = V2 - V0
-      n[a] = vfloat4::load(b.n[a]);
-      tv[a] = v0[a] - org[a];  // T = V0 - P
+      tv[a] = v0[a] - org[a];                  // T = V0 - P
     }
+    // N = E2 x E1, as Triangle::make computes it (cross(c - a, a - b)).
+    const vfloat4 n[3] = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],
+                          e2[0] * e1[1] - e2[1] * e1[0]};
     // S = T x Dir
     const vfloat4 s[3] = {tv[1] * dir[2] - tv[2] * dir[1], tv[2] * dir[0] - tv[0] * dir[2],
                           tv[0] * dir[1] - tv[1] * dir[0]};

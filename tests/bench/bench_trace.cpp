@@ -501,9 +501,12 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
   const Stats r = stats(rt2_ms);
   const std::size_t bytes = rt2::accel_bytes(acc);
   std::printf("mesh=%s tris=%zu set=build engine=rt2 threads=1 reps=%d build_ms_median=%.2f "
-              "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f\n",
+              "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f isa=%s "
+              "width=%d nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f\n",
               m.name.c_str(), m.tris, o.build_reps, r.median, r.min, r.max, bytes,
-              double(bytes) / double(m.tris));
+              double(bytes) / double(m.tris), rt2::isa_name(acc.isa), rt2::bvh_width(acc.isa),
+              acc.wide_nodes, acc.stats.leaves, acc.blocks.size(),
+              double(m.tris) / (4.0 * double(acc.blocks.size())));
   for (bool watertight : o.tests) {
     if (embree_ms[watertight].empty()) continue;
     const Stats e = stats(embree_ms[watertight]);
@@ -560,6 +563,21 @@ void trace_and_report(const Options& o, const Model& m, const RaySet& set,
                     "mrays_min=%.3f mrays_max=%.3f hits=%zu",
                     m.name.c_str(), set.name.c_str(), r.engine.c_str(), test_name(watertight),
                     o.threads[ti], set.size(), mr.median, mr.min, mr.max, r.answers.count());
+        if (k == 0) {  // rt2's own counters: what a ray costs it
+          rt2::TraversalCounts counts;
+          if (set.occlusion) {
+            std::vector<std::uint8_t> occ(set.size());
+            rt2::trace_occluded(acc, rt2::TraceOptions{watertight}, set.rays.data(),
+                                set.t_max.data(), set.size(), occ.data(), &counts);
+          } else {
+            std::vector<Hit> hits(set.size());
+            rt2::trace_closest(acc, rt2::TraceOptions{watertight}, set.rays.data(),
+                               set.t_max.data(), set.size(), hits.data(), &counts);
+          }
+          std::printf(" nodes_per_ray=%.2f triangles_per_ray=%.2f",
+                      double(counts.nodes) / double(set.size()),
+                      4.0 * double(counts.blocks) / double(set.size()));
+        }
         if (k > 0)
           std::printf(" disagree=%zu disagree_edge=%zu disagree_end=%zu tdiff=%zu "
                       "tdiff_edge=%zu",
