@@ -128,8 +128,8 @@ TEST(Trace, AccelBytesCountsTheTreesAndLeafBlocks) {
   EXPECT_GE(accel_bytes(f.acc), read);
   EXPECT_LT(accel_bytes(f.acc), read + read / 4);  // the spheres' leaf order, nothing wild
   EXPECT_EQ(accel_bytes(Accel{}), 0u);
-  // A block holds at most 4 triangles: at least 52 bytes per triangle.
-  EXPECT_GE(f.acc.blocks.size() * sizeof(TriangleBlock), f.acc.tris.size() * 52);
+  // A block holds at most 4 triangles: at least 40 bytes per triangle.
+  EXPECT_GE(f.acc.blocks.size() * sizeof(TriangleBlock), f.acc.tris.size() * 40);
 }
 
 }  // namespace
