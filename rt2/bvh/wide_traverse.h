@@ -30,37 +30,55 @@
 
 namespace rt2::RT2_ISA {
 
-// The ray as the node test needs it, for N lanes.
-template <int N>
+// The ray as the node test needs it, for N lanes. `Finite`: every component of 1/dir is
+// finite, so no slab distance can be NaN and the minima and maxima can be taken as a tree
+// (a shorter dependency chain, on the path from one node to the next); otherwise they are
+// taken in an order that lets a NaN distance fall away (see above).
+template <int N, bool Finite>
 struct NodeRay {
   using V = mlib::vfloat<N>;
-  V org[3], inv[3];
+  V org[3], inv_near[3], inv_far[3];
   int near[3], far[3];  // box rows (WideNode::bounds)
 
-  explicit NodeRay(const Ray& r) {
-    const RayPre pre(r);
+  explicit NodeRay(const Ray& r, const RayPre& pre) {
     for (int a = 0; a < 3; ++a) {
       org[a] = V::broadcast(r.org[a]);
-      inv[a] = V::broadcast(pre.inv_dir[a]);
+      inv_near[a] = V::broadcast(pre.inv_dir[a]);
+      // Far distances carry Ize's 1 + 2 gamma(3) in the reciprocal: the same three
+      // roundings before the padding as (far - org) * inv * pad, one multiply less per node.
+      inv_far[a] = V::broadcast(pre.inv_dir[a] * kSlabPad);
       // 1/dir is +-inf for a zero component, with the zero's sign: the sign bit decides.
       near[a] = 2 * a + (std::signbit(pre.inv_dir[a]) ? 1 : 0);
       far[a] = near[a] ^ 1;
     }
   }
 
-  // Bit i set when child i's box is entered within [t_min, t_max]; its entry in `entry`.
-  MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max, V& entry) const {
-    V tn = t_min, tf = t_max;
+  // Bit i set when child i's box is entered within [t_min, t_max_padded / pad]; its entry
+  // in `entry`. The caller pads t_max: t_max_padded = t_max * kSlabPad.
+  MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max_padded, V& entry) const {
+    V n[3], f[3];
     for (int a = 0; a < 3; ++a) {
-      const V n = (V::load(node.bounds[near[a]]) - org[a]) * inv[a];
-      const V f = (V::load(node.bounds[far[a]]) - org[a]) * inv[a];
-      tn = max(n, tn);  // NaN n gives tn
-      tf = min(f, tf);
+      n[a] = (V::load(node.bounds[near[a]]) - org[a]) * inv_near[a];
+      f[a] = (V::load(node.bounds[far[a]]) - org[a]) * inv_far[a];
+    }
+    V tn, tf;
+    if constexpr (Finite) {
+      tn = max(max(n[0], n[1]), max(n[2], t_min));
+      tf = min(min(f[0], f[1]), min(f[2], t_max_padded));
+    } else {  // NaN first: max / min then return the other operand
+      tn = max(n[2], max(n[1], max(n[0], t_min)));
+      tf = min(f[2], min(f[1], min(f[0], t_max_padded)));
     }
     entry = tn;
-    return mlib::bits(tn <= tf * V::broadcast(kSlabPad));
+    return mlib::bits(tn <= tf);
   }
 };
+
+// Whether the node test may take the tree form (every 1/dir component finite).
+MLIB_INLINE bool finite_reciprocal(const RayPre& pre) {
+  return std::isfinite(pre.inv_dir[0]) && std::isfinite(pre.inv_dir[1]) &&
+         std::isfinite(pre.inv_dir[2]);
+}
 
 // A pending subtree and the distance at which the ray enters it.
 struct StackEntry {
@@ -90,13 +108,12 @@ MLIB_INLINE void prefetch_ref(const WideBvh<N>& bvh, const TriangleBlock* blocks
 // The closest triangle hit by `ray` in (t_min, h.t), updating h (t, u, v and prim = the
 // triangle's index) when one is found; ties at equal t go to the smaller index. `test` is
 // a FastTriangleTest or a WatertightTriangleTest built from `ray`.
-template <int N, class Test, bool Count>
+template <int N, class Test, bool Count, bool Finite>
 inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
-                                  const Ray& ray, const Test& test, float t_min, Hit& result,
-                                  TraversalCounts* counts) {
+                                  const Ray& ray, const RayPre& pre, const Test& test,
+                                  float t_min, Hit& result, TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
-  if (bvh.root == kNoChild) return;
-  const NodeRay<N> nr(ray);
+  const NodeRay<N, Finite> nr(ray, pre);
   const V t_min_v = V::broadcast(t_min);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   Hit h = result;  // a local: no store below can alias it
@@ -111,7 +128,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
       if constexpr (Count) ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
-      unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t), entry);
+      unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t * kSlabPad), entry);
       if (mask == 0) goto pop;
       {
         unsigned i = static_cast<unsigned>(std::countr_zero(mask));
@@ -180,22 +197,25 @@ template <int N, class Test>
 MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                   const Ray& ray, const Test& test, float t_min, Hit& h,
                                   TraversalCounts* counts) {
+  if (bvh.root == kNoChild) return;
+  const RayPre pre(ray);
   if (counts)
-    closest_triangle_walk<N, Test, true>(bvh, blocks, ray, test, t_min, h, counts);
+    closest_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
+  else if (finite_reciprocal(pre))
+    closest_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
   else
-    closest_triangle_walk<N, Test, false>(bvh, blocks, ray, test, t_min, h, counts);
+    closest_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
 }
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
 // order, until it returns true; returns whether it did.
-template <int N, class Test, bool Count, class OnHit>
+template <int N, class Test, bool Count, bool Finite, class OnHit>
 inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
-                              const Test& test, float t_min, float t_max, OnHit&& on_hit,
-                              TraversalCounts* counts) {
+                              const RayPre& pre, const Test& test, float t_min, float t_max,
+                              OnHit&& on_hit, TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
-  if (bvh.root == kNoChild) return false;
-  const NodeRay<N> nr(ray);
-  const V t_min_v = V::broadcast(t_min), t_max_v = V::broadcast(t_max);
+  const NodeRay<N, Finite> nr(ray, pre);
+  const V t_min_v = V::broadcast(t_min), t_max_v = V::broadcast(t_max * kSlabPad);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   // Inclusive upper bound of the block test, strictly below t_max.
   const vfloat4 t_below_4 = vfloat4::broadcast(std::nextafter(t_max, -kInfinity));
@@ -243,8 +263,16 @@ template <int N, class Test, class OnHit>
 MLIB_INLINE bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
                               const Test& test, float t_min, float t_max, OnHit&& on_hit,
                               TraversalCounts* counts) {
-  return counts ? any_triangle_walk<N, Test, true>(bvh, blocks, ray, test, t_min, t_max, on_hit, counts)
-                : any_triangle_walk<N, Test, false>(bvh, blocks, ray, test, t_min, t_max, on_hit, counts);
+  if (bvh.root == kNoChild) return false;
+  const RayPre pre(ray);
+  if (counts)
+    return any_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                   on_hit, counts);
+  if (finite_reciprocal(pre))
+    return any_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                   on_hit, counts);
+  return any_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                  on_hit, counts);
 }
 
 }  // namespace rt2::RT2_ISA
