@@ -1,7 +1,9 @@
 // rt2/trace.h — batch ray queries against an Accel, for tests and benchmarks: arrays of
 // rays traced with the Accel's instruction set (rt2/isa.h) and the chosen triangle test.
 // One table lookup per call, none per ray. The renderer does not use these: its kernel
-// calls the same queries inline (rt2/query.h).
+// calls the same queries inline (rt2/query.h). They run in the calling thread's
+// floating-point mode; callers that want Embree's conditions set FTZ / DAZ first
+// (mlib/fpmode.h), as the renderer does.
 #pragma once
 
 #include <cstddef>

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "mlib/fpmode.h"
 #include "rt2/builtin_scene.h"
 #include "rt2/error.h"
 #include "rt2/schedule.h"
@@ -88,6 +89,20 @@ TEST(Render, EveryInstructionSetGivesIdenticalImages) {
         EXPECT_EQ(ra.total(), rb.total());
       }
     }
+}
+
+TEST(Render, RowsRenderWithDenormalsFlushedAndTheCallersModeComesBack) {
+  const Scene s = make_default_scene();
+  const Accel acc = Accel::build(s, BvhConfig{});
+  const Renderer r(s, acc, small());
+  Image img(small().width, small().height);
+  RayCounts counts;
+  for (bool mode : {false, true}) {
+    mlib::set_flush_denormals(mode);
+    r.render_rows(0, 4, img, counts);
+    EXPECT_EQ(mlib::flush_denormals(), mode);
+  }
+  mlib::set_flush_denormals(false);
 }
 
 TEST(Render, BackendsThreadCountsAndGrainsGiveIdenticalImages) {
