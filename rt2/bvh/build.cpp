@@ -7,6 +7,7 @@
 #include "rt2/bvh/build.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -151,12 +152,15 @@ class Builder {
   // plane separates anything.
   std::uint32_t sah(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds, Aabb& lb,
                     Aabb& lcb, Aabb& rb, Aabb& rcb) {
-    const int bins = config_.sah_bins;
-    const std::uint32_t block = config_.sah_block, shift = block - 1;
+    // A node with fewer primitives than bins gets as many bins as primitives (at least 4):
+    // the planes between empty bins cost time and find nothing.
+    const int bins = std::min(config_.sah_bins, std::max(4, int(end - begin)));
+    const int log_block = std::countr_zero(config_.sah_block);  // a power of two
+    const std::uint32_t round = config_.sah_block - 1;
     const vec4 lo = cbounds.lo, extent = cbounds.extent();
     float scale[3];
     for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? float(bins) / extent[a] : 0.0f;
-    std::fill(bins_.begin(), bins_.end(), Bin{});
+    std::fill(bins_.begin(), bins_.begin() + 3 * bins, Bin{});
     Bin* bx = bins_.data();
     for (std::uint32_t i = begin; i < end; ++i) {
       const PrimBox& p = prims_[i];
@@ -188,8 +192,8 @@ class Builder {
         n += b[k].count;
         const std::uint32_t rn = right_[k + 1].count;
         if (n == 0 || rn == 0) continue;
-        const float cost = acc.area() * float((n + shift) / block) +
-                           right_[k + 1].area * float((rn + shift) / block);
+        const float cost = acc.area() * float((n + round) >> log_block) +
+                           right_[k + 1].area * float((rn + round) >> log_block);
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -237,8 +241,8 @@ Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config) {
   if (config.max_leaf_size == 0) throw Error("BVH max leaf size must be >= 1");
   if (config.sah_bins < 2 || config.sah_bins > 1024)
     throw Error("BVH SAH bins must be in [2, 1024]");
-  if (config.sah_block < 1 || config.sah_block > 64)
-    throw Error("BVH SAH block size must be in [1, 64]");
+  if (config.sah_block < 1 || config.sah_block > 64 || !std::has_single_bit(config.sah_block))
+    throw Error("BVH SAH block size must be a power of two in [1, 64]");
   const auto t0 = std::chrono::steady_clock::now();
   Bvh bvh;
   if (!boxes.empty()) Builder(boxes, config, bvh).run();

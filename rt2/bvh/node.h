@@ -34,7 +34,8 @@ struct BvhConfig {
   // sah: the best of `sah_bins` planes per axis by the surface area heuristic.
   Split split = Split::sah;
   int sah_bins = 16;
-  // The SAH counts a leaf's primitives in blocks of this many (1 ... 64): leaves are
+  // The SAH counts a leaf's primitives in blocks of this many (a power of two, 1 ... 64,
+  // default 4): leaves are
   // tested a TriangleBlock (4 triangles) at a time, so a split into 4 + 4 costs less than
   // one into 3 + 5, and leaves come out fuller (Embree's rule). 1 is the plain SAH.
   std::uint32_t sah_block = 4;
