@@ -62,7 +62,8 @@
 //
 // OUTPUT. Everything on stdout is `key=value` lines (progress goes to stderr):
 //   cpu="..." hw_threads=N
-//   rt2_mode=release rt2_arch=sse41 rt2_isa=sse4.1 chunk=4096
+//   rt2_mode=release rt2_arch=sse41 rt2_isa=avx512 rt2_width=8 chunk=4096  (rt2_isa: the ray
+//       kernels' instruction set, the widest the CPU runs unless --isa forces one)
 //   embree=3.13.5 embree_native_ray16=1 embree_tasking=tbb  (or embree=none / embree=off)
 //   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
 //       bytes=... bytes_per_tri=...      (and engine=embree test=T lines, then ratio lines)
@@ -101,6 +102,7 @@
 
 #include "mlib/fpmode.h"
 #include "rt2/error.h"
+#include "rt2/isa.h"
 #include "rt2/offset.h"
 #include "rt2/scene_io.h"
 #include "rt2/trace.h"
@@ -348,34 +350,6 @@ std::string cpu_model() {
   return "unknown";
 }
 
-// The instruction sets this program (and rt2 with it) was compiled for.
-std::string compiled_isa() {
-  std::string s;
-  auto add = [&](const char* name) { s += s.empty() ? name : std::string("+") + name; };
-#if defined(MLIB_SCALAR)
-  add("scalar");
-#endif
-#if defined(__SSE4_1__)
-  add("sse4.1");
-#endif
-#if defined(__SSE4_2__)
-  add("sse4.2");
-#endif
-#if defined(__AVX__)
-  add("avx");
-#endif
-#if defined(__AVX2__)
-  add("avx2");
-#endif
-#if defined(__FMA__)
-  add("fma");
-#endif
-#if defined(__AVX512F__)
-  add("avx512f");
-#endif
-  return s.empty() ? "sse2" : s;
-}
-
 struct Stats {
   double median = 0, min = 0, max = 0;
 };
@@ -416,6 +390,7 @@ struct Options {
   std::size_t incoherent_rays = std::size_t(1) << 20, chunk = 4096;
   bool embree = false;
   std::string embree_config;  // appended to every Embree device's configuration
+  rt2::Isa isa = rt2::best_isa();  // rt2's ray kernels
   // The configuration string of an Embree device: `base` plus embree_config.
   std::string device_config(const std::string& base) const {
     return base.empty() || embree_config.empty() ? base + embree_config
@@ -480,7 +455,7 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
 #endif
   for (int rep = 0; rep < o.build_reps; ++rep) {
     const auto t0 = std::chrono::steady_clock::now();
-    acc = rt2::Accel::build(m.scene, rt2::BvhConfig{});
+    acc = rt2::Accel::build(m.scene, rt2::BvhConfig{}, o.isa);
     rt2_ms.push_back(ms_since(t0));
 #if defined(RT2_HAVE_EMBREE)
     if (dev)
@@ -626,6 +601,9 @@ int parse(int argc, char** argv, Options& o) {
   app.add_option("--chunk", o.chunk, "rays per parallel task (default 4096; a multiple of 16)")
       ->check(CLI::Range(std::size_t(16), std::size_t(1) << 24));
   app.add_flag("--no-embree", no_embree, "rt2 only, even when built with Embree");
+  std::string isa;
+  app.add_option("--isa", isa, "rt2's ray kernels: sse41, avx2 or avx512 (default: the widest "
+                               "this CPU runs)");
   app.add_option("--embree-config", o.embree_config,
                  "added to Embree's device configuration, e.g. isa=sse4.2 to hold Embree to "
                  "rt2's instruction set");
@@ -641,6 +619,13 @@ int parse(int argc, char** argv, Options& o) {
     return 2;
   };
   if (o.width % 4 || o.height % 4) return fail("--width and --height must be multiples of 4");
+  if (!isa.empty()) {
+    try {
+      o.isa = rt2::parse_isa(isa);
+    } catch (const rt2::Error& e) {
+      return fail(e.what());
+    }
+  }
   if (o.chunk % 16) return fail("--chunk must be a multiple of 16");
   o.sets = split(sets);
   for (const std::string& s : o.sets)
@@ -691,8 +676,8 @@ int main(int argc, char** argv) {
 
   std::printf("cpu=\"%s\" hw_threads=%u\n", cpu_model().c_str(),
               std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("rt2_mode=%s rt2_arch=%s rt2_isa=%s chunk=%zu\n", RT2_BENCH_MODE, RT2_BENCH_ARCH,
-              compiled_isa().c_str(), o.chunk);
+  std::printf("rt2_mode=%s rt2_arch=%s rt2_isa=%s rt2_width=%d chunk=%zu\n", RT2_BENCH_MODE,
+              RT2_BENCH_ARCH, rt2::isa_name(o.isa), rt2::bvh_width(o.isa), o.chunk);
 #if defined(RT2_HAVE_EMBREE)
   if (o.embree) {
     RTCDevice probe = bench::embree_device(o.device_config("").c_str());
