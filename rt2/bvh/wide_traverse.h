@@ -164,14 +164,13 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
     // A leaf: its blocks, until the one marked last.
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
       if constexpr (Count) ++local.blocks;
-      const BlockHits bh = test(*b, t_min_4, vfloat4::broadcast(h.t));
-      for (unsigned m = bh.mask; m; m &= m - 1) {
-        const int l = std::countr_zero(m);
-        const std::uint32_t prim = b->prim_of(l);
-        if (bh.t[l] < h.t || (bh.t[l] == h.t && h.found() && prim < h.prim)) {
-          h.t = bh.t[l];
-          h.u = bh.u[l];
-          h.v = bh.v[l];
+      const NearestHit n = test.nearest(*b, t_min_4, vfloat4::broadcast(h.t));
+      if (n.lane >= 0) {
+        const std::uint32_t prim = b->prim_of(n.lane);
+        if (n.t < h.t || (n.t == h.t && h.found() && prim < h.prim)) {
+          h.t = n.t;
+          h.u = n.u;
+          h.v = n.v;
           h.prim = prim;
         }
       }

@@ -7,7 +7,8 @@
 //
 // Fast test (thesis formula 10): E1 = V0 - V1, E2 = V2 - V0, T = V0 - P, S = T x Dir,
 // [t, u, v] = [T·N, S·E2, S·E1] / (Dir·N); a hit when u >= 0, v >= 0, u + v <= 1 and t is
-// inside the ray's interval. Branch-free up to the answer; a ray parallel to the triangle
+// inside the ray's interval (u >= 0 and v >= 0 tested as the signs of S·E2 and S·E1
+// relative to Dir·N, which is the same but for a quotient that underflows). Branch-free up to the answer; a ray parallel to the triangle
 // divides by zero and every comparison fails. Each triangle rounds its own edges, so a ray
 // through a shared edge or vertex can slip between two triangles.
 //
@@ -52,7 +53,11 @@ inline bool intersect(const Triangle& tri, const Ray& r, float t_min, float t_ma
   t = tuv.x();
   u = tuv.y();
   v = tuv.z();
-  return (t > t_min) & (t < t_max) & (u >= 0.0f) & (v >= 0.0f) & (u + v <= 1.0f);
+  // u >= 0 and v >= 0 as signs of S·E2 and S·E1 against Dir·N (the quotient could round a
+  // tiny negative to -0): the form the four-triangle test checks before it divides.
+  const float side = std::copysign(1.0f, d.w());
+  return (t > t_min) & (t < t_max) & (d.y() * side >= 0.0f) & (d.z() * side >= 0.0f) &
+         (u + v <= 1.0f);
 }
 
 // The per-ray part of the watertight test: the axis the ray is most aligned with becomes

@@ -12,6 +12,8 @@
 // closest-hit query can break ties between equal t by triangle index (wide_traverse.h).
 #pragma once
 
+#include <bit>
+
 #include "mlib/vfloat.h"
 #include "rt2/geometry/triangle.h"
 #include "rt2/geometry/triangle_block.h"
@@ -31,8 +33,35 @@ struct BlockHits {
   alignas(16) float t[4], u[4], v[4];
 };
 
-// The thesis's test (formula 10), four triangles at a time. A ray parallel to a triangle
-// divides by zero and fails every comparison; an empty lane (NaN) likewise.
+// The nearest lane hit in a block (ties: the lowest lane, which holds the smallest index).
+struct NearestHit {
+  int lane = -1;
+  float t, u, v;
+};
+
+// From the lanes hit (mask) and their t, u, v: the nearest, in registers.
+MLIB_INLINE NearestHit nearest_lane(vbool4 hit, vfloat4 t, vfloat4 u, vfloat4 v) {
+  NearestHit n;
+  const vfloat4 tm = select(hit, t, vfloat4::broadcast(kInfinity));
+  const vfloat4 m = mlib::reduce_min(tm);
+  const unsigned at = mlib::bits(hit & (tm == m));
+  if (!at) return n;
+  n.lane = std::countr_zero(at);
+  alignas(16) float ts[4], us[4], vs[4];
+  t.store(ts), u.store(us), v.store(vs);
+  n.t = ts[n.lane], n.u = us[n.lane], n.v = vs[n.lane];
+  return n;
+}
+
+// The thesis's test (formula 10), four triangles at a time, computing what `intersect`
+// (triangle.h) computes. A ray parallel to a triangle divides by zero and fails every
+// comparison; an empty lane (NaN) likewise.
+//
+// Most lanes miss, and most are rejected before any division: u >= 0 and v >= 0 are sign
+// tests of S·E2 and S·E1 against Dir·N (the same tests `intersect` makes), and u + v <= 1
+// and the t interval are checked in the undivided form with a relative slack of 2^-20 that
+// makes the check a superset of the divided one. Lanes that survive are divided and tested
+// exactly.
 struct FastTriangleTest {
   vfloat4 org[3], dir[3];
 
@@ -43,8 +72,13 @@ struct FastTriangleTest {
     }
   }
 
-  MLIB_INLINE BlockHits operator()(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
-    BlockHits h;
+  // The undivided quantities, and the lanes that may hit in (t_min, t_max].
+  struct Undivided {
+    vfloat4 tn, su, sv, den;  // T·N, S·E2, S·E1, Dir·N
+    unsigned may_hit;
+  };
+
+  MLIB_INLINE Undivided undivided(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
     vfloat4 v0[3], e1[3], e2[3], tv[3];
     for (int a = 0; a < 3; ++a) {
       v0[a] = vfloat4::load(b.v0[a]);
@@ -61,20 +95,49 @@ struct FastTriangleTest {
     const auto dot = [](const vfloat4* p, const vfloat4* q) {
       return (p[0] * q[0] + p[1] * q[1]) + p[2] * q[2];
     };
-    const vfloat4 den = dot(dir, n);
-    const vfloat4 su = dot(s, e2), sv = dot(s, e1);
-    // u >= 0 and v >= 0 need S·E2 and S·E1 on the side of Dir·N: rejects most lanes before
-    // dividing (the same lanes the divided test rejects, up to the sign of an underflow).
+    Undivided d;
+    d.den = dot(dir, n);
+    d.su = dot(s, e2);
+    d.sv = dot(s, e1);
+    d.tn = dot(tv, n);
     const vfloat4 zero = vfloat4::broadcast(0.0f);
-    if (!mlib::bits((mlib::xor_sign(su, den) >= zero) & (mlib::xor_sign(sv, den) >= zero)))
-      return h;
-    const vfloat4 t = dot(tv, n) / den, u = su / den, v = sv / den;
-    h.mask = mlib::bits((t > t_min) & (t <= t_max) & (u >= zero) & (v >= zero) &
-                        (u + v <= vfloat4::broadcast(1.0f)));
-    t.store(h.t);
-    u.store(h.u);
-    v.store(h.v);
+    const vfloat4 u = mlib::xor_sign(d.su, d.den), v = mlib::xor_sign(d.sv, d.den);
+    const vfloat4 t = mlib::xor_sign(d.tn, d.den), ad = mlib::abs(d.den);
+    const vfloat4 up = vfloat4::broadcast(1.0f + 0x1p-20f), down = vfloat4::broadcast(1.0f - 0x1p-20f);
+    d.may_hit = mlib::bits((u >= zero) & (v >= zero) & (u + v <= ad * up) &
+                           (t > t_min * ad * down) & (t <= t_max * ad * up));
+    return d;
+  }
+
+  // The exact test of the lanes in d.may_hit: t in (t_min, t_max], u, v.
+  MLIB_INLINE static vbool4 exact(const Undivided& d, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
+                                  vfloat4& u, vfloat4& v) {
+    const vfloat4 zero = vfloat4::broadcast(0.0f);
+    t = d.tn / d.den;
+    u = d.su / d.den;
+    v = d.sv / d.den;
+    return (mlib::xor_sign(d.su, d.den) >= zero) & (mlib::xor_sign(d.sv, d.den) >= zero) &
+           (t > t_min) & (t <= t_max) & (u + v <= vfloat4::broadcast(1.0f));
+  }
+
+  // Every lane hit with t in (t_min, t_max].
+  MLIB_INLINE BlockHits operator()(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
+    BlockHits h;
+    const Undivided d = undivided(b, t_min, t_max);
+    if (!d.may_hit) return h;
+    vfloat4 t, u, v;
+    h.mask = mlib::bits(exact(d, t_min, t_max, t, u, v));
+    t.store(h.t), u.store(h.u), v.store(h.v);
     return h;
+  }
+
+  // The nearest lane hit with t in (t_min, t_max].
+  MLIB_INLINE NearestHit nearest(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
+    const Undivided d = undivided(b, t_min, t_max);
+    if (!d.may_hit) return {};
+    vfloat4 t, u, v;
+    const vbool4 hit = exact(d, t_min, t_max, t, u, v);
+    return nearest_lane(hit, t, u, v);
   }
 };
 
@@ -92,8 +155,27 @@ struct WatertightTriangleTest {
     sz = vfloat4::broadcast(ray.sz);
   }
 
+  // Every lane hit with t in (t_min, t_max].
   MLIB_INLINE BlockHits operator()(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
     BlockHits h;
+    vfloat4 t, u, v;
+    h.mask = mlib::bits(test(b, t_min, t_max, t, u, v));
+    if (h.mask) t.store(h.t), u.store(h.u), v.store(h.v);
+    return h;
+  }
+
+  // The nearest lane hit with t in (t_min, t_max].
+  MLIB_INLINE NearestHit nearest(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
+    vfloat4 t, u, v;
+    const vbool4 hit = test(b, t_min, t_max, t, u, v);
+    if (!mlib::bits(hit)) return {};
+    return nearest_lane(hit, t, u, v);
+  }
+
+ private:
+  // The lanes hit, with their t, u, v (left unset when no lane is hit).
+  MLIB_INLINE vbool4 test(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
+                          vfloat4& u, vfloat4& v) const {
     const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
     // Vertices relative to the origin, in the ray's permuted axes.
     const vfloat4 az_ = vfloat4::load(b.v0[kz]) - org[kz];
@@ -116,17 +198,14 @@ struct WatertightTriangleTest {
                            ((eu > zero) | (ev > zero) | (ew > zero));
     const vfloat4 det = (eu + ev) + ew;
     const vbool4 ok = andnot(outside, det != zero) & (det == det);  // not parallel, not NaN
-    if (!mlib::bits(ok)) return h;
+    if (!mlib::bits(ok)) return ok;
     const vfloat4 inv = vfloat4::broadcast(1.0f) / det;
-    const vfloat4 t = ((eu * (sz * az_) + ev * (sz * bz_)) + ew * (sz * cz_)) * inv;
-    h.mask = mlib::bits(ok & (t > t_min) & (t <= t_max));
-    t.store(h.t);
-    (ev * inv).store(h.u);
-    (ew * inv).store(h.v);
-    return h;
+    t = ((eu * (sz * az_) + ev * (sz * bz_)) + ew * (sz * cz_)) * inv;
+    u = ev * inv;
+    v = ew * inv;
+    return ok & (t > t_min) & (t <= t_max);
   }
 
- private:
   // The paper's fallback: lanes with an edge function exactly 0 are recomputed in double.
   [[gnu::noinline]] static void refine_in_double(unsigned lanes, vfloat4 ax, vfloat4 ay,
                                                  vfloat4 bx, vfloat4 by, vfloat4 cx,
