@@ -32,7 +32,7 @@ using io::fmt;
 using io::kMaxObjBytes;
 using io::obj_to_mesh;
 using io::one_line;
-using io::read_file;
+using io::read_text_file;
 using io::read_toml_scene;
 using io::validate;
 
@@ -109,7 +109,7 @@ Mesh load_obj(const std::string& path, Scene& scene, int override_material) {
   const std::size_t degenerate = scene.degenerate_triangles;
   try {
     return guarded(path, [&] {
-      return obj_to_mesh(path, read_file(path, kMaxObjBytes, ""), scene, override_material);
+      return obj_to_mesh(path, read_text_file(path, kMaxObjBytes, ""), scene, override_material);
     });
   } catch (const Error&) {  // leave the scene as it was
     scene.materials.resize(materials);

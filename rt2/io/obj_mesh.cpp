@@ -274,7 +274,7 @@ std::string read_libraries(const std::string& obj_path, const ObjScan& scan, boo
              "; using the default material");
       continue;
     }
-    const std::string file = read_file(path, kMaxObjBytes, "");
+    const std::string file = read_text_file(path, kMaxObjBytes, "");
     const std::string_view mtl = without_bom(file);
     scan_mtl(path, mtl, facts);
     text += normalize_mtl(mtl);  // material names as scan_mtl reads them

@@ -2,8 +2,8 @@
 //
 // Part of the implementation of rt2/scene_io.h, not an API: used by rt2::load_obj and
 // rt2::frame_obj (rt2/scene_io.cpp) and by the [[meshes]] of a TOML scene
-// (rt2/io/toml_scene.cpp). The caller reads the OBJ text (read_file, at most kMaxObjBytes),
-// so that a missing file is reported in the caller's terms.
+// (rt2/io/toml_scene.cpp). The caller reads the OBJ text (read_text_file, at most
+// kMaxObjBytes), so that a missing file is reported in the caller's terms.
 #pragma once
 
 #include <cstddef>

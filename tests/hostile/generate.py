@@ -8,6 +8,7 @@ bytes, 5000-deep nesting, 100 000 spheres, 1 MB lines); the files are committed,
 needs no Python. Run it from anywhere after changing a case: it rewrites every case file
 (and removes none; delete a dropped case's files by hand).
 """
+import gzip
 import math
 import os
 import random
@@ -197,6 +198,17 @@ def encodings():
     ok("utf8_bom_obj", "obj", "quiet: true\nfaces: 1\nmaterial: utf8_bom_obj.obj:red\n",
        obj=b"\xef\xbb\xbfmtllib utf8_bom_obj.mtl\n" + ("usemtl red\n" + TRIANGLE).encode(),
        mtl=b"\xef\xbb\xbfnewmtl red\nKd 1 0 0\n")
+    # An OBJ or MTL that is not text is refused at once, saying what it is.
+    gz = gzip.compress(TRIANGLE.encode(), mtime=0)
+    obj_error("obj_gzip", gz, "file is gzip-compressed; decompress it first")
+    obj_error("obj_zip", b"PK\x03\x04\x14\x00\x00\x00\x08\x00" + gz[10:], "file is a ZIP archive")
+    obj_error("obj_utf16_le_with_bom", b"\xff\xfe" + TRIANGLE.encode("utf-16-le"), "file is UTF-16")
+    obj_error("obj_utf16_be_with_bom", b"\xfe\xff" + TRIANGLE.encode("utf-16-be"), "file is UTF-16")
+    obj_error("obj_utf16_le_without_bom", TRIANGLE.encode("utf-16-le"),
+              "file contains a NUL byte: it is binary or UTF-16", 1)
+    error("mtl_gzip", "obj", "file is gzip-compressed", file="mtl_gzip.mtl",
+          obj="mtllib mtl_gzip.mtl\nusemtl red\n" + TRIANGLE,
+          mtl=gzip.compress(b"newmtl red\nKd 1 0 0\n", mtime=0))
     crlf = (CAMERA + RED + sphere() + mesh("crlf.obj")).replace("\n", "\r\n")
     ok("crlf", "toml", "quiet: true\nspheres: 1\nfaces: 2\nmaterial: crlf.obj:blue\n", toml=crlf,
        obj=("mtllib crlf.mtl\nusemtl blue\n" + TRIANGLE + "v 1 1 0\nf 2 4 3\n").replace(
@@ -440,6 +452,7 @@ def sizes():
     #   long_line_obj_comment.obj:   a 1 MiB comment, then TRIANGLE
     #   long_line_obj_vertex.obj:    "v 0 0 0" + 262 144 more coordinates, a triangle
     #   long_line_toml_key.toml:     CAMERA, then a 1 MiB key on line 4
+    #   obj_zeros_2_gib.obj:            2 GiB of zero bytes, a sparse file (refused after 64 KiB)
     def generated(name, ext, expect):
         write(f"{name}.expect", f"load: generated/{name}.{ext}\n{expect}")
     generated("spheres_100000", "toml", "ok: true\nquiet: true\nspheres: 100000\n")
@@ -447,6 +460,7 @@ def sizes():
     generated("long_line_obj_comment", "obj", "ok: true\nquiet: true\nfaces: 1\n")
     generated("long_line_obj_vertex", "obj", "ok: true\nquiet: true\nfaces: 1\n")
     generated("long_line_toml_key", "toml", "error: unknown key\nline: 4\n")
+    generated("obj_zeros_2_gib", "obj", "error: file contains a NUL byte\nline: 1\n")
 
 
 def main():

@@ -9,13 +9,16 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <random>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "rt2/error.h"
@@ -868,6 +871,51 @@ TEST(SceneIo, BinaryObjIsAnErrorNotACrash) {
   Scene s;
   const std::string msg = error_of([&] { load_obj(path, s); });
   expect_message(msg, path, 0, "");
+}
+
+// Refused at once, saying what the file is (as TOML scenes are), not as a first bad line.
+TEST(SceneIo, CompressedUtf16OrBinaryObjIsRefusedSayingWhatItIs) {
+  const std::string gzip("\x1F\x8B\x08\x00\x00\x00\x00\x00\x00\x03+S0T0U0\xE2\x02\x00", 19);
+  const std::string utf16_le = [] {
+    std::string u("\xFF\xFE", 2);
+    for (const char c : kTriangleObj) u += std::string{c, '\0'};
+    return u;
+  }();
+  for (const auto& [bytes, line, text] : std::vector<std::tuple<std::string, int, std::string>>{
+           {gzip, 0, "file is gzip-compressed; decompress it first (gunzip)"},
+           {std::string("PK\x03\x04\x14\x00", 6), 0, "file is a ZIP archive"},
+           {utf16_le, 0,
+            "file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8"},
+           {utf16_le.substr(2), 1, "file contains a NUL byte: it is binary or UTF-16"},
+           {kTriangleObj + "v 1 1 0\n" + std::string(1, '\0') + "\n", 6, "NUL byte"},
+       }) {
+    TempDir dir;
+    const std::string path = dir.write("m.obj", bytes);
+    Scene s;
+    expect_message(error_of([&] { load_obj(path, s); }), path, line, text);
+  }
+  // The same for an MTL library, named in the message.
+  TempDir dir;
+  const std::string mtl = dir.write("t.mtl", gzip);
+  const std::string obj = dir.write("t.obj", "mtllib t.mtl\nusemtl m\n" + kTriangleObj);
+  Scene s;
+  expect_message(error_of([&] { load_obj(obj, s); }), mtl, 0, "gzip-compressed");
+}
+
+// A sparse file made with truncate: 2 GiB of zero bytes (the limit is 4 GiB) is refused after
+// its first block, not read whole into memory first.
+TEST(SceneIo, TwoGigabytesOfZeroBytesAreRefusedAfterTheFirstBlock) {
+  TempDir dir;
+  const std::string path = dir.path("zeros.obj");
+  std::ofstream(path).close();
+  fs::resize_file(path, std::uintmax_t{2} << 30);
+  Scene s;
+  const auto start = std::chrono::steady_clock::now();
+  expect_message(error_of([&] { load_obj(path, s); }), path, 1, "file contains a NUL byte");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ measure  ] 2 GiB of zeros refused in %.4f s\n", seconds);
+  EXPECT_LT(seconds, 2.0);  // 0.0001 s in release; reading them whole takes seconds
 }
 
 TEST(SceneIo, BadKrInMtlNamesTheMtlLine) {
