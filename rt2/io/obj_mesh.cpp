@@ -3,10 +3,12 @@
 //
 // tinyobjloader parses, but it accepts bad input silently (an unparsable coordinate
 // becomes 0, an out-of-range index is a warning or a skipped face), so the OBJ text is
-// scanned first to find such problems with their line numbers. MTL libraries are found and
-// read here too (relative to the OBJ), which gives the "missing library" warning and the
-// line numbers of MTL values that tinyobjloader does not report (rt2/io/mtl.h). Then the
-// faces are assembled into a Mesh with one scene material each.
+// scanned first to find such problems with their line numbers; the scan also notes the
+// corner count of faces of 256 corners or more (tinyobjloader stores it in a byte). MTL
+// libraries are found and read here too (relative to the OBJ), which gives the "missing
+// library" warning and the line numbers of MTL values that tinyobjloader does not report
+// (rt2/io/mtl.h). tinyobjloader leaves polygons whole; rt2/io/polygon_triangulation.h
+// splits them. Then the faces are assembled into a Mesh with one scene material each.
 #include "rt2/io/obj_mesh.h"
 
 #include <tiny_obj_loader.h>
@@ -30,6 +32,7 @@
 
 #include "rt2/error.h"
 #include "rt2/io/mtl.h"
+#include "rt2/io/polygon_triangulation.h"
 #include "rt2/io/text.h"
 
 namespace rt2::io {
@@ -45,11 +48,13 @@ bool parse_index(std::string_view token, long long& v) {
   return !token.empty() && r.ec == std::errc() && r.ptr == token.data() + token.size();
 }
 
-// What an OBJ file says, as far as the checks need it.
+// What an OBJ file says, as far as the checks and the assembly need it.
 struct ObjScan {
   std::size_t faces = 0;
   std::vector<std::string> libraries;                       // mtllib names, in order
   std::vector<std::pair<std::string, std::size_t>> usemtl;  // name, line
+  // Faces of 256 corners or more: (face number from 0, corners).
+  std::vector<std::pair<std::size_t, std::size_t>> big_faces;
 };
 
 struct IndexKind {
@@ -192,6 +197,7 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
       check_tag(file, line, s);
     } else if (t[0] == "f") {
       check_face(file, line, t, defined, total);
+      if (t.size() - 1 >= 256) scan.big_faces.emplace_back(scan.faces, t.size() - 1);
       ++scan.faces;
     } else if (t[0] == "mtllib") {
       for (std::size_t i = 1; i < t.size(); ++i) scan.libraries.emplace_back(t[i]);
@@ -299,8 +305,17 @@ bool usable_normals(const tinyobj::attrib_t& a, const std::vector<tinyobj::shape
   return true;
 }
 
-// Positions (and normals) per distinct corner, faces, and a scene material per face.
-Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMaterials& materials) {
+// Polygons that ear clipping gave up on (rt2/io/polygon_triangulation.h): how many, and the
+// first one's face number and corners.
+struct Fallbacks {
+  std::size_t count = 0, first_face = 0, first_corners = 0;
+};
+
+// Positions (and normals) per distinct corner, faces (polygons triangulated), and a scene
+// material per face. tinyobjloader keeps each polygon's corners in order, and its face
+// count in a byte: the faces of 256 corners or more take theirs from the scan.
+Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, const ObjScan& scan,
+              FaceMaterials& materials, Fallbacks& fallbacks) {
   const tinyobj::attrib_t& a = reader.GetAttrib();
   const std::size_t nv = a.vertices.size() / 3;
   const bool smooth = usable_normals(a, reader.GetShapes());
@@ -308,8 +323,6 @@ Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMat
   mesh.name = path;
   std::unordered_map<std::uint64_t, std::uint32_t> corners;
   auto corner = [&](const tinyobj::index_t& ix) {
-    if (ix.vertex_index < 0 || static_cast<std::size_t>(ix.vertex_index) >= nv)
-      throw Error(path + ": tinyobjloader returned a vertex index out of range");
     const auto v = static_cast<std::size_t>(ix.vertex_index);
     const int n = smooth ? ix.normal_index : -1;
     const std::uint64_t key = (std::uint64_t(v) << 32) | std::uint32_t(n + 1);
@@ -325,21 +338,59 @@ Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMat
     }
     return it->second;
   };
+  const auto mismatch = [&] {
+    error_at(path, 0, 0, "tinyobjloader returned other faces than the file has");
+  };
+  PolygonTriangulator triangulator;
+  std::vector<vec4> polygon;
+  std::vector<CornerTriangle> triangles;
+  std::size_t face = 0, big = 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const tinyobj::mesh_t& m = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
-      const std::size_t count = m.num_face_vertices[f];
-      if (count == 3 && offset + 3 <= m.indices.size()) {
-        mesh.faces.push_back({corner(m.indices[offset]), corner(m.indices[offset + 1]),
-                              corner(m.indices[offset + 2])});
-        mesh.face_materials.push_back(
-            materials(f < m.material_ids.size() ? m.material_ids[f] : -1));
+      const unsigned char byte = m.num_face_vertices[f];
+      std::size_t count = byte;
+      if (big < scan.big_faces.size() && scan.big_faces[big].first == face) {
+        count = scan.big_faces[big++].second;
+        if (count % 256 != byte) mismatch();
+      }
+      if (count < 3 || offset + count > m.indices.size()) mismatch();
+      const std::span<const tinyobj::index_t> ix(m.indices.data() + offset, count);
+      for (const tinyobj::index_t& i : ix)
+        if (i.vertex_index < 0 || static_cast<std::size_t>(i.vertex_index) >= nv)
+          error_at(path, 0, 0, "tinyobjloader returned a vertex index out of range");
+      polygon.clear();
+      for (const tinyobj::index_t& i : ix) {
+        const float* p = &a.vertices[3 * static_cast<std::size_t>(i.vertex_index)];
+        polygon.emplace_back(p[0], p[1], p[2]);
+      }
+      triangles.clear();
+      if (!triangulator.triangulate(polygon, triangles) && fallbacks.count++ == 0) {
+        fallbacks.first_face = face;
+        fallbacks.first_corners = count;
+      }
+      const std::uint32_t material = materials(f < m.material_ids.size() ? m.material_ids[f] : -1);
+      for (const CornerTriangle& t : triangles) {
+        mesh.faces.push_back({corner(ix[t[0]]), corner(ix[t[1]]), corner(ix[t[2]])});
+        mesh.face_materials.push_back(material);
       }
       offset += count;
+      ++face;
     }
+    if (offset != m.indices.size()) mismatch();
   }
+  if (face != scan.faces) mismatch();
   return mesh;
+}
+
+// The line of face number `face` (from 0) of the OBJ `text`, for a message.
+std::size_t face_line(std::string_view text, std::size_t face) {
+  std::size_t found = 0, seen = 0;
+  for_each_line(text, [&](std::size_t line, std::string_view s) {
+    if (found == 0 && (s.starts_with("f ") || s.starts_with("f\t")) && seen++ == face) found = line;
+  });
+  return found;
 }
 
 // Materials for faces that name an MTL material the libraries do not have.
@@ -378,7 +429,7 @@ Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& s
   // The text already read is parsed, not the file again; tinyobjloader then reads the MTL
   // text (all libraries) at the first mtllib line, as it would the first library file.
   tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
+  config.triangulate = false;  // polygons are PolygonTriangulator's
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromString(text, mtl_text, config))
@@ -390,7 +441,17 @@ Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& s
     if (!std::isfinite(v)) error_at(path, 0, 0, "vertex is not finite");
 
   FaceMaterials materials(scene, path, reader.GetMaterials(), facts, override_material);
-  Mesh mesh = assemble(path, reader, materials);
+  Fallbacks fallbacks;
+  Mesh mesh = assemble(path, reader, scan, materials, fallbacks);
+  if (fallbacks.count > 0) {
+    warn(location(path, face_line(text, fallbacks.first_face), 0) + ": a polygon of " +
+         std::to_string(fallbacks.first_corners) +
+         " corners intersects itself or is degenerate; ear clipping gave up and its last "
+         "corners are a fan" +
+         (fallbacks.count > 1
+              ? " (" + std::to_string(fallbacks.count) + " such polygons in this file)"
+              : ""));
+  }
   const std::size_t faces = mesh.faces.size();
   scene.degenerate_triangles += mesh.drop_degenerate();
   if (mesh.faces.empty()) {

@@ -291,6 +291,29 @@ def obj_faces():
     ok("obj_polygons_4_to_100", "obj",
        f"quiet: true\nfaces: {sum(n - 2 for n in (4, 5, 6, 7, 8, 16, 31, 64, 100))}\n",
        obj="\n".join(lines + faces) + "\n")
+    # Polygons as modellers write them (tinyobjloader filled the ring's hole, fanned the frame
+    # across its hole, split the dart outside itself, and read 300 corners as 44).
+    ring = [f"v {r * math.cos(2 * math.pi * k / 32):.6f} {r * math.sin(2 * math.pi * k / 32):.6f} 0"
+            for r in (1.0, 0.93) for k in range(32)]
+    corners = list(range(1, 33)) + [1, 33] + list(range(64, 33, -1)) + [33]
+    ok("obj_polygon_lightwave_ring", "obj", "quiet: true\nfaces: 64\ndegenerate: 0\n",
+       obj="# a ring as LightWave writes it: a bridge edge from vertex 1 to 33, walked twice\n" +
+       "\n".join(ring) + "\nf " + " ".join(map(str, corners)) + "\n")
+    ok("obj_polygon_square_frame", "obj", "quiet: true\nfaces: 8\ndegenerate: 0\n",
+       obj="v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 1 1 0\nv 1 3 0\nv 3 3 0\nv 3 1 0\n"
+       "f 1 2 3 4 1 5 6 7 8 5\n")
+    ok("obj_polygon_concave_quad", "obj", "quiet: true\nfaces: 2\ndegenerate: 0\n",
+       obj="v 0 0 0\nv 1 0.2 0\nv 2 0 0\nv 1 3 0\nf 1 2 3 4\n")
+    circle = [f"v {math.cos(2 * math.pi * k / 300):.6f} {math.sin(2 * math.pi * k / 300):.6f} 0"
+              for k in range(300)]
+    ok("obj_polygon_300_corners", "obj", "quiet: true\nfaces: 298\ndegenerate: 0\n",
+       obj="\n".join(circle) + "\nf " + " ".join(str(k + 1) for k in range(300)) + "\n")
+    # A figure eight through a repeated corner has no net area, hence no plane: the polygon
+    # is fanned (two triangles, two degenerate), with a warning.
+    ok("obj_polygon_figure_eight", "obj",
+       "warning: obj_polygon_figure_eight.obj:6: a polygon of 6 corners intersects itself or is "
+       "degenerate\nfaces: 2\ndegenerate: 2\n",
+       obj="v 0 0 0\nv 1 -1 0\nv 1 1 0\nv -1 -1 0\nv -1 1 0\nf 1 2 3 1 4 5\n")
 
 
 # ---- TOML numbers: NaN, inf and absurd values ----------------------------------------------
@@ -452,6 +475,9 @@ def sizes():
     #   long_line_obj_comment.obj:   a 1 MiB comment, then TRIANGLE
     #   long_line_obj_vertex.obj:    "v 0 0 0" + 262 144 more coordinates, a triangle
     #   long_line_toml_key.toml:     CAMERA, then a 1 MiB key on line 4
+    #   obj_polygon_100000_corners.obj: a circle of 100 000 corners, one face (tinyobjloader
+    #                                   took 21-50 s, and lost triangles)
+    #   obj_polygon_random_20000.obj:   one face through 20 000 random points (self-intersecting)
     #   obj_zeros_2_gib.obj:            2 GiB of zero bytes, a sparse file (refused after 64 KiB)
     def generated(name, ext, expect):
         write(f"{name}.expect", f"load: generated/{name}.{ext}\n{expect}")
@@ -460,6 +486,9 @@ def sizes():
     generated("long_line_obj_comment", "obj", "ok: true\nquiet: true\nfaces: 1\n")
     generated("long_line_obj_vertex", "obj", "ok: true\nquiet: true\nfaces: 1\n")
     generated("long_line_toml_key", "toml", "error: unknown key\nline: 4\n")
+    generated("obj_polygon_100000_corners", "obj", "ok: true\nquiet: true\nfaces: 99998\n")
+    generated("obj_polygon_random_20000", "obj",
+              "ok: true\nwarning: a polygon of 20000 corners intersects itself or is degenerate\n")
     generated("obj_zeros_2_gib", "obj", "error: file contains a NUL byte\nline: 1\n")
 
 

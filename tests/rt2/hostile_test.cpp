@@ -11,13 +11,16 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <ostream>
+#include <random>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rt2/error.h"
@@ -63,6 +66,27 @@ std::string make_generated(const std::string& file) {
     std::string s = "v 0 0 0";
     for (std::size_t i = 0; i < kMiB / 4; ++i) s += " 0.5";
     return s + "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  const auto polygon = [](std::size_t n, auto&& corner) {
+    std::string s;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto [x, y] = corner(k);
+      s += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    }
+    s += "f";
+    for (std::size_t k = 1; k <= n; ++k) s += " " + std::to_string(k);
+    return s + "\n";
+  };
+  if (file == "obj_polygon_100000_corners.obj") {
+    return polygon(100000, [](std::size_t k) {
+      const double a = 2 * 3.14159265358979 * double(k) / 100000;
+      return std::pair(std::cos(a), std::sin(a));
+    });
+  }
+  if (file == "obj_polygon_random_20000.obj") {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    return polygon(20000, [&](std::size_t) { return std::pair(u(rng), u(rng)); });
   }
   return {};
 }
