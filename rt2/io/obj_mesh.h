@@ -19,11 +19,11 @@ constexpr std::size_t kMaxObjBytes = 4096ull << 20;  // an OBJ or MTL file
 
 // The Mesh of the OBJ `text`, read from `path` (a UTF-8 byte-order mark, in it or in an MTL
 // library, is skipped): the text is checked first (every problem named with its line), its
-// MTL libraries are read relative to `path` (a missing one is a warning), tinyobjloader
-// parses both, and polygons are triangulated (a warning names the first that ear clipping
-// gave up on). Face materials and degenerate faces are as rt2::load_obj documents
-// (rt2/scene_io.h), but on an error `scene` may keep materials already added: restoring it
-// is the caller's job. Throws rt2::Error.
+// MTL libraries are read relative to `path` (a missing one is a warning; none is read when
+// `override_material` >= 0), tinyobjloader parses the OBJ, and polygons are triangulated
+// (a warning names the first that ear clipping gave up on). Face materials and degenerate
+// faces are as rt2::load_obj documents (rt2/scene_io.h), but on an error `scene` may keep
+// materials already added: restoring it is the caller's job. Throws rt2::Error.
 Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
                  int override_material);
 

@@ -215,6 +215,13 @@ std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::
 
 // ---- lines and tokens -------------------------------------------------------------------
 
+std::string_view after_keyword(std::string_view line) {
+  const std::size_t end = line.find_first_of(" \t");
+  if (end == std::string_view::npos) return {};
+  const std::size_t name = line.find_first_not_of(" \t", end);
+  return name == std::string_view::npos ? std::string_view() : line.substr(name);
+}
+
 std::string_view without_bom(std::string_view text) {
   return text.starts_with(kUtf8Bom) ? text.substr(kUtf8Bom.size()) : text;
 }

@@ -112,6 +112,10 @@ void for_each_line(std::string_view text, Fn&& fn) {
   }
 }
 
+// `line` (blanks trimmed at both ends, as for_each_line gives it) without its first token and
+// the blanks after it: the name in "usemtl Hard Wood" or "newmtl  red" ("Hard Wood", "red").
+std::string_view after_keyword(std::string_view line);
+
 // The UTF-8 byte-order mark that Windows editors write at the start of a text file.
 inline constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 

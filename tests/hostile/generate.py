@@ -464,6 +464,31 @@ def paths():
        mtl="newmtl my red\nKd 1 0 0\n")
 
 
+# ---- MTL values -----------------------------------------------------------------------------
+
+def mtl_values():
+    """Every MTL number is checked as an OBJ vertex is (tinyobjloader read a bad one as 0, and
+    `Kd 0.5` as dark red)."""
+    def mtl_case(name, mtl, expect):
+        case(name, f"load: {name}.obj\n{expect}",
+             obj=f"mtllib {name}.mtl\nusemtl m\n" + TRIANGLE, mtl="newmtl m\n" + mtl)
+
+    def mtl_error(name, mtl, message, line):
+        mtl_case(name, mtl, f"error: {message}\nline: {line}\nfile: {name}.mtl\n")
+
+    mtl_case("mtl_one_number_is_grey", "Ka 0.1\nKd 0.5\nKs 0.25\nNs 10\n",
+             "ok: true\nquiet: true\ndiffuse: 0.5 0.5 0.5 mtl_one_number_is_grey.obj:m\n"
+             "specular: 0.25 0.25 0.25 mtl_one_number_is_grey.obj:m\n")
+    mtl_error("mtl_ns_nan", "Kd 1 1 1\nNs nan\n", "Ns must be a finite number (got 'nan')", 3)
+    mtl_error("mtl_kd_nan", "Kd nan\n", "Kd must be a finite number (got 'nan')", 2)
+    mtl_error("mtl_kd_words", "Kd red green blue\n", "Kd must be a number (got 'red')", 2)
+    mtl_error("mtl_kd_two_numbers", "Kd 0.5 0.5\n", "Kd needs 1 or 3 numbers (got 2)", 2)
+    mtl_error("mtl_ks_1e39", "Ks 1 1e39 1\n", "Ks must be a finite number (got '1e39')", 2)
+    mtl_error("mtl_ni_inf", "Ni inf\n", "Ni must be a finite number (got 'inf')", 2)
+    mtl_error("mtl_d_word", "d opaque\n", "d must be a number (got 'opaque')", 2)
+    mtl_error("mtl_illum_word", "illum two\n", "illum must be an integer from 0 to 10", 2)
+
+
 # ---- size ---------------------------------------------------------------------------------
 
 def sizes():
@@ -478,6 +503,8 @@ def sizes():
     #   obj_polygon_100000_corners.obj: a circle of 100 000 corners, one face (tinyobjloader
     #                                   took 21-50 s, and lost triangles)
     #   obj_polygon_random_20000.obj:   one face through 20 000 random points (self-intersecting)
+    #   mtl_1000000_materials.obj/.mtl: a triangle using material m999999 of a million
+    #                                   (tinyobjloader held 2.3 GB)
     #   obj_zeros_2_gib.obj:            2 GiB of zero bytes, a sparse file (refused after 64 KiB)
     def generated(name, ext, expect):
         write(f"{name}.expect", f"load: generated/{name}.{ext}\n{expect}")
@@ -489,6 +516,9 @@ def sizes():
     generated("obj_polygon_100000_corners", "obj", "ok: true\nquiet: true\nfaces: 99998\n")
     generated("obj_polygon_random_20000", "obj",
               "ok: true\nwarning: a polygon of 20000 corners intersects itself or is degenerate\n")
+    generated("mtl_1000000_materials", "obj",
+              "ok: true\nquiet: true\nfaces: 1\n"
+              "diffuse: 0.5 0.5 0.5 mtl_1000000_materials.obj:m999999\n")
     generated("obj_zeros_2_gib", "obj", "error: file contains a NUL byte\nline: 1\n")
 
 
@@ -500,6 +530,7 @@ def main():
     encodings()
     depth()
     obj_faces()
+    mtl_values()
     numbers()
     keys()
     paths()

@@ -342,6 +342,37 @@ TEST(SceneIo, MtlKrSetsReflectivityAndOutOfRangeValuesAreClamped) {
   EXPECT_NO_THROW(s.validate());
 }
 
+// An OBJ triangle using material `name` of the MTL `mtl`; the scene it loads into.
+Scene load_with_mtl(const TempDir& dir, const std::string& mtl, const std::string& name = "m") {
+  dir.write("t.mtl", mtl);
+  Scene s;
+  load_obj(dir.write("t.obj", "mtllib t.mtl\nusemtl " + name + "\n" + kTriangleObj), s);
+  return s;
+}
+
+TEST(SceneIo, MtlColourOfOneNumberIsGrey) {
+  TempDir dir;
+  const Scene s = load_with_mtl(dir, "newmtl m\nKa 0.1\nKd 0.5\nKs 0.25\nNs 10\n");
+  const Material& m = material_named(s, "t.obj:m");
+  expect_vec(m.diffuse, 0.5f, 0.5f, 0.5f);  // not (0.5, 0, 0), dark red
+  expect_vec(m.ambient, 0.1f, 0.1f, 0.1f);
+  expect_vec(m.specular, 0.25f, 0.25f, 0.25f);
+}
+
+TEST(SceneIo, BadMtlNumbersAreErrorsNamingTheMtlLine) {
+  for (const auto& [mtl, line, text] : std::vector<std::tuple<std::string, int, std::string>>{
+           {"newmtl m\nNs nan\n", 2, "Ns must be a finite number (got 'nan')"},
+           {"newmtl m\nKd 1 1 1\nKd nan\n", 3, "Kd must be a finite number (got 'nan')"},
+           {"newmtl m\nKd red green blue\n", 2, "Kd must be a number (got 'red')"},
+       }) {
+    TempDir dir;
+    const std::string path = dir.write("t.mtl", mtl);
+    const std::string obj = dir.write("t.obj", "mtllib t.mtl\nusemtl m\n" + kTriangleObj);
+    Scene s;
+    expect_message(error_of([&] { load_obj(obj, s); }), path, line, text);
+  }
+}
+
 TEST(SceneIo, MissingMtlLibraryIsOneWarningLineNotAnError) {
   TempDir dir;
   const std::string obj = dir.write("m.obj",
