@@ -4,11 +4,12 @@
 // tinyobjloader parses the OBJ, but it accepts bad input silently (an unparsable coordinate
 // becomes 0, an out-of-range index is a warning or a skipped face), so the OBJ text is
 // scanned first to find such problems with their line numbers; the scan also notes what
-// tinyobjloader does not keep or keeps wrongly: the material each face uses and the corner
-// count of faces of 256 corners or more (tinyobjloader stores it in a byte). MTL libraries
-// are found and read here (relative to the OBJ, rt2/io/mtl.h), only the materials the faces
-// name kept. tinyobjloader leaves polygons whole; rt2/io/polygon_triangulation.h splits
-// them. Then the faces are assembled into a Mesh with one scene material each.
+// tinyobjloader does not keep or keeps wrongly: the material each face uses (`usemtl` takes
+// the rest of the line as the name) and the corner count of faces of 256 corners or more
+// (tinyobjloader stores it in a byte). MTL libraries are found and read here (relative to
+// the OBJ, rt2/io/mtl.h), only the materials the faces name kept. tinyobjloader leaves
+// polygons whole; rt2/io/polygon_triangulation.h splits them. Then the faces are assembled
+// into a Mesh with one scene material each.
 #include "rt2/io/obj_mesh.h"
 
 #include <tiny_obj_loader.h>
@@ -206,7 +207,7 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
     } else if (t[0] == "mtllib") {
       for (std::size_t i = 1; i < t.size(); ++i) scan.libraries.emplace_back(t[i]);
     } else if (t[0] == "usemtl") {
-      const std::string_view name = t.size() > 1 ? t[1] : std::string_view();  // a word
+      const std::string_view name = after_keyword(s);  // "usemtl Hard Wood": "Hard Wood"
       const auto [it, added] =
           name_numbers.try_emplace(name, static_cast<std::uint32_t>(scan.material_names.size()));
       if (added) {

@@ -456,12 +456,16 @@ def paths():
     ok("mtl_name_unicode", "obj", "quiet: true\nmaterial: mtl_name_unicode.obj:écarlate✓\n",
        obj="mtllib mtl_name_unicode.mtl\nusemtl écarlate✓\n" + TRIANGLE,
        mtl="newmtl écarlate✓\nKd 1 0 0\n")
-    # An MTL name with a space: usemtl reads one word (as tinyobjloader does), so "my red" is
-    # not found as "my": a warning and the default material.
+    # An MTL name with a space: usemtl takes the rest of the line, as newmtl does (it read one
+    # word, as tinyobjloader does, and "my red" was not found as "my").
     ok("mtl_name_with_space", "obj",
-       "warning: material 'my' is not in the material libraries\nmaterial: default\n",
+       "quiet: true\nmaterial: mtl_name_with_space.obj:my red\n",
        obj="mtllib mtl_name_with_space.mtl\nusemtl my red\n" + TRIANGLE,
        mtl="newmtl my red\nKd 1 0 0\n")
+    ok("usemtl_name_with_spaces_and_tabs", "obj",
+       "quiet: true\ndiffuse: 0.6 0.4 0.2 usemtl_name_with_spaces_and_tabs.obj:Hard Wood\n",
+       obj="mtllib usemtl_name_with_spaces_and_tabs.mtl\nusemtl \t Hard Wood \t\n" + TRIANGLE,
+       mtl="newmtl Hard Wood\nKd 0.6 0.4 0.2\n")
 
 
 # ---- MTL values -----------------------------------------------------------------------------

@@ -373,6 +373,14 @@ TEST(SceneIo, BadMtlNumbersAreErrorsNamingTheMtlLine) {
   }
 }
 
+TEST(SceneIo, UsemtlNamesTheRestOfTheLine) {
+  TempDir dir;
+  testing::internal::CaptureStderr();
+  const Scene s = load_with_mtl(dir, "newmtl Hard Wood\nKd 0.6 0.4 0.2\n", "Hard Wood  ");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  expect_vec(material_named(s, "t.obj:Hard Wood").diffuse, 0.6f, 0.4f, 0.2f);
+}
+
 TEST(SceneIo, MissingMtlLibraryIsOneWarningLineNotAnError) {
   TempDir dir;
   const std::string obj = dir.write("m.obj",
