@@ -149,6 +149,9 @@ Material from_mtl(const MtlMaterial& t) {
   m.diffuse = t.has_kd || !t.diffuse_texture ? color(t.kd) : vec4(0.6f, 0.6f, 0.6f);
   m.specular = color(t.ks);
   m.shininess = std::clamp(t.ns, 0.0f, 1e4f);
+  // Exponent 0 would add Ks over the whole lit side (cos^0 = 1): 3ds Max writes Ns 0 with
+  // Ks > 0 for matte surfaces, so 0 means no highlight.
+  if (m.shininess == 0.0f) m.specular = vec4(0.0f, 0.0f, 0.0f);
   if (t.has_ni && t.ni > 0.0f) m.ior = std::min(t.ni, 100.0f);
   // d, else 1 − Tr: the opacity.
   const float opacity = t.has_d ? clamp01(t.d) : t.has_tr ? clamp01(1.0f - t.tr) : 1.0f;

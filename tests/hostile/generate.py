@@ -491,6 +491,10 @@ def mtl_values():
     mtl_error("mtl_ni_inf", "Ni inf\n", "Ni must be a finite number (got 'inf')", 2)
     mtl_error("mtl_d_word", "d opaque\n", "d must be a number (got 'opaque')", 2)
     mtl_error("mtl_illum_word", "illum two\n", "illum must be an integer from 0 to 10", 2)
+    # 3ds Max writes Ns 0 with Ks > 0 for matte surfaces: exponent 0 is no highlight (a
+    # highlight of exponent 0 covers the whole lit side in Ks).
+    mtl_case("mtl_ns_0_with_ks", "Kd 0.5\nKs 0.9\nNs 0\n",
+             "ok: true\nquiet: true\nspecular: 0 0 0 mtl_ns_0_with_ks.obj:m\n")
 
 
 # ---- size ---------------------------------------------------------------------------------

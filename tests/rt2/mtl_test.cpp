@@ -1,6 +1,6 @@
 // tests/rt2/mtl_test.cpp — rt2::io::read_mtl and from_mtl (rt2/io/mtl.h): one number is a
-// grey colour; every number is checked, a bad one named with its file and line; only the
-// materials asked for are kept, the first definition of a name wins.
+// grey colour; every number is checked, a bad one named with its file and line; Ns 0 means
+// no highlight; only the materials asked for are kept, the first definition of a name wins.
 #include "rt2/io/mtl.h"
 
 #include <gtest/gtest.h>
@@ -89,6 +89,20 @@ TEST(Mtl, StatementsThatRt2IgnoresAreAccepted) {
       "Ka spectral ident.rfl 1\nKs xyz 1 1 1\nmap_Kd -s 1 1 1 wood.png\n");
   EXPECT_FLOAT_EQ(t.d, 0.5f);
   EXPECT_EQ(t.illum, 2);
+}
+
+TEST(Mtl, ShininessZeroMeansNoHighlight) {
+  // 3ds Max writes Ns 0 with Ks > 0 for matte walls: with exponent 0 the highlight would
+  // cover the whole lit side.
+  const Material matte = from_mtl(read_one("newmtl m\nKs 0.9\nNs 0\n"));
+  expect_rgb(matte.specular, 0, 0, 0);
+  EXPECT_FLOAT_EQ(matte.shininess, 0.0f);
+  const Material negative = from_mtl(read_one("newmtl m\nKs 0.9\nNs -3\n"));
+  expect_rgb(negative.specular, 0, 0, 0);
+  // A mirror keeps its reflection; a positive exponent its highlight.
+  const Material mirror = from_mtl(read_one("newmtl m\nKs 0.9\nNs 0\nillum 3\n"));
+  EXPECT_FLOAT_EQ(mirror.reflectivity, 0.9f);
+  expect_rgb(from_mtl(read_one("newmtl m\nKs 0.9\nNs 0.5\n")).specular, 0.9f, 0.9f, 0.9f);
 }
 
 TEST(Mtl, OnlyTheMaterialsAskedForAreKeptAndTheFirstDefinitionWins) {

@@ -373,6 +373,12 @@ TEST(SceneIo, BadMtlNumbersAreErrorsNamingTheMtlLine) {
   }
 }
 
+TEST(SceneIo, MtlShininessZeroHasNoHighlight) {
+  TempDir dir;
+  const Scene s = load_with_mtl(dir, "newmtl m\nKd 0.5\nKs 0.5\nNs 0\n");
+  expect_vec(material_named(s, "t.obj:m").specular, 0, 0, 0);
+}
+
 TEST(SceneIo, UsemtlNamesTheRestOfTheLine) {
   TempDir dir;
   testing::internal::CaptureStderr();
