@@ -16,10 +16,15 @@ namespace {
 constexpr std::string_view kColorKeys[] = {"Ka", "Kd", "Ks", "Ke", "Kt", "Tf", "Kr"};
 constexpr std::string_view kNumberKeys[] = {"Ns", "Ni", "d",  "Tr",  "sharpness", "Pr",
                                             "Pm", "Ps", "Pc", "Pcr", "aniso",     "anisor"};
+constexpr std::string_view kTextureKeys[] = {"bump", "disp", "decal", "refl", "norm"};
 
 template <std::size_t N>
 bool one_of(std::string_view key, const std::string_view (&keys)[N]) {
   return std::find(std::begin(keys), std::end(keys), key) != std::end(keys);
+}
+
+bool is_texture(std::string_view key) {
+  return key.starts_with("map_") || one_of(key, kTextureKeys);
 }
 
 float clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
@@ -46,9 +51,25 @@ class MtlReader {
       read_number(key, values);
     } else if (key == "illum") {
       read_illum(values);
-    } else if (key == "map_Kd" && current_) {
-      current_->diffuse_texture = true;  // textures are not supported; but see from_mtl
+    } else if (is_texture(key)) {
+      if (key == "map_Kd" && current_) current_->diffuse_texture = true;
+      if (current_ && !texture_line_) {
+        texture_line_ = line;
+        texture_key_ = key;
+      }
     }
+  }
+
+  // The warnings, once per file.
+  void finish() const {
+    if (texture_line_)
+      warn(location(file_, texture_line_, 0) + ": textures are not supported; '" +
+           std::string(texture_key_) +
+           "' and every other texture statement of this file are ignored (materials keep their "
+           "colours)");
+    if (spectral_line_)
+      warn(location(file_, spectral_line_, 0) +
+           ": spectral and CIE XYZ colours are not supported; those of this file are ignored");
   }
 
  private:
@@ -78,8 +99,10 @@ class MtlReader {
 
   // 1 number (grey: g = b = r, as the MTL specification says) or 3.
   void read_color(std::string_view key, std::span<const std::string_view> values) {
-    if (!values.empty() && (values[0] == "spectral" || values[0] == "xyz"))
-      return;  // spectral and CIE XYZ colours are not supported
+    if (!values.empty() && (values[0] == "spectral" || values[0] == "xyz")) {
+      if (current_ && !spectral_line_) spectral_line_ = line_;
+      return;
+    }
     if (values.size() != 1 && values.size() != 3)
       fail(std::string(key) + " needs 1 or 3 numbers (got " + std::to_string(values.size()) + ")");
     float c[3];
@@ -134,6 +157,8 @@ class MtlReader {
   MtlMaterial* current_ = nullptr;        // the material being read, if it is kept
   std::optional<std::string_view> name_;  // the material being read, for messages
   std::size_t line_ = 0;
+  std::size_t texture_line_ = 0, spectral_line_ = 0;  // the first, in materials kept
+  std::string_view texture_key_;
 };
 
 }  // namespace
@@ -141,6 +166,7 @@ class MtlReader {
 void read_mtl(const std::string& file, std::string_view text, MtlMaterials& wanted) {
   MtlReader reader(file, wanted);
   for_each_line(text, [&](std::size_t line, std::string_view s) { reader.line(line, s); });
+  reader.finish();
 }
 
 Material from_mtl(const MtlMaterial& t) {

@@ -4,8 +4,9 @@
 // through tinyobjloader, which reads `Kd 0.5` as dark red (0.5, 0, 0), turns `Kd red` or
 // `Ns nan` into numbers without a word, and keeps some 2 KB of texture fields per material
 // (2.3 GB for a file of a million materials). read_mtl checks every statement rt2 knows, an
-// error naming the MTL file and line, and keeps only the materials the OBJ asks for; from_mtl
-// maps a material to a Material as scenes/FORMAT.md documents.
+// error naming the MTL file and line, keeps only the materials the OBJ asks for, and warns
+// once per file about what rt2 ignores (textures); from_mtl maps a material to a Material as
+// scenes/FORMAT.md documents.
 #pragma once
 
 #include <cstddef>
@@ -50,8 +51,9 @@ using MtlMaterials = std::map<std::string, std::optional<MtlMaterial>, std::less
 // integer from 0 to 10; a problem throws rt2::Error "file:LINE: material 'x': Kd must be a
 // number (got 'red')". `newmtl NAME` takes the rest of the line as the name (blanks trimmed).
 // A material named in `wanted` that has no definition yet gets this one (the first definition
-// wins); the others are checked and dropped. Textures (map_Kd, bump, ...) and spectral or
-// CIE XYZ colours are not supported: ignored.
+// wins); the others are checked and dropped. Prints one warning for the file if a material
+// it keeps has a texture (map_Kd, bump, ...: not supported) and one if it has a spectral or
+// CIE XYZ colour (ignored).
 void read_mtl(const std::string& file, std::string_view text, MtlMaterials& wanted);
 
 // The mapping documented in scenes/FORMAT.md.

@@ -1,6 +1,7 @@
 // tests/rt2/mtl_test.cpp — rt2::io::read_mtl and from_mtl (rt2/io/mtl.h): one number is a
 // grey colour; every number is checked, a bad one named with its file and line; Ns 0 means
-// no highlight; only the materials asked for are kept, the first definition of a name wins.
+// no highlight; only the materials asked for are kept, the first definition of a name wins;
+// textures are warned about once per file.
 #include "rt2/io/mtl.h"
 
 #include <gtest/gtest.h>
@@ -84,11 +85,17 @@ TEST(Mtl, EveryNumberIsCheckedAndNamedWithItsLine) {
 }
 
 TEST(Mtl, StatementsThatRt2IgnoresAreAccepted) {
+  testing::internal::CaptureStderr();
   const MtlMaterial t = read_one(
       "newmtl m\nKd 1 0 0\nd -halo 0.5\nsharpness 60\nPr 0.5\nPm 0\nillum 2\nKm 1 2 3 4\n"
       "Ka spectral ident.rfl 1\nKs xyz 1 1 1\nmap_Kd -s 1 1 1 wood.png\n");
+  const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_FLOAT_EQ(t.d, 0.5f);
   EXPECT_EQ(t.illum, 2);
+  EXPECT_NE(err.find("warning: m.mtl:11: textures are not supported"), std::string::npos) << err;
+  EXPECT_NE(err.find("warning: m.mtl:9: spectral and CIE XYZ colours are not supported"),
+            std::string::npos)
+      << err;
 }
 
 TEST(Mtl, ShininessZeroMeansNoHighlight) {
@@ -121,6 +128,24 @@ TEST(Mtl, NamesAreTheRestOfTheLine) {
   ASSERT_TRUE(m.at("Hard Wood").has_value());
   ASSERT_TRUE(m.at("red").has_value());
   expect_rgb(from_mtl(*m.at("Hard Wood")).diffuse, 0.5f, 0.5f, 0.5f);
+}
+
+TEST(Mtl, TexturesAreWarnedAboutOncePerFile) {
+  MtlMaterials m = wanting({"a", "b"});
+  testing::internal::CaptureStderr();
+  read_mtl("m.mtl", "newmtl a\nmap_Kd a.png\nbump a_bump.png\nnewmtl b\nKd 0.2\nmap_Ks b.png\n", m);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err,
+            "warning: m.mtl:2: textures are not supported; 'map_Kd' and every other texture "
+            "statement of this file are ignored (materials keep their colours)\n");
+  // map_Kd without Kd: tinyobjloader's 0.6 grey, not black.
+  expect_rgb(from_mtl(*m.at("a")).diffuse, 0.6f, 0.6f, 0.6f);
+  expect_rgb(from_mtl(*m.at("b")).diffuse, 0.2f, 0.2f, 0.2f);
+  // Textures of materials nobody uses are not worth a warning.
+  MtlMaterials none = wanting({"b"});
+  testing::internal::CaptureStderr();
+  read_mtl("m.mtl", "newmtl a\nmap_Kd a.png\nnewmtl b\nKd 0.2\n", none);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
 TEST(Mtl, AbsentValuesKeepTinyobjloadersDefaults) {

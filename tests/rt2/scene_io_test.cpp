@@ -387,6 +387,17 @@ TEST(SceneIo, UsemtlNamesTheRestOfTheLine) {
   expect_vec(material_named(s, "t.obj:Hard Wood").diffuse, 0.6f, 0.4f, 0.2f);
 }
 
+TEST(SceneIo, MtlTexturesAreOneWarningPerFile) {
+  TempDir dir;
+  testing::internal::CaptureStderr();
+  const Scene s = load_with_mtl(dir, "newmtl m\nKd 0.5\nmap_Kd wood.png\nmap_bump b.png\n");
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err, "warning: " + dir.path("t.mtl") +
+                     ":3: textures are not supported; 'map_Kd' and every other texture "
+                     "statement of this file are ignored (materials keep their colours)\n");
+  expect_vec(material_named(s, "t.obj:m").diffuse, 0.5f, 0.5f, 0.5f);
+}
+
 TEST(SceneIo, MissingMtlLibraryIsOneWarningLineNotAnError) {
   TempDir dir;
   const std::string obj = dir.write("m.obj",
