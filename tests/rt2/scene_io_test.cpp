@@ -23,7 +23,10 @@
 #include <utility>
 #include <vector>
 
+#include "rt2/accel.h"
 #include "rt2/error.h"
+#include "rt2/render.h"
+#include "rt2/schedule.h"
 #include "tests/rt2/temp_dir.h"
 
 #ifndef RT2_SOURCE_DIR
@@ -656,13 +659,53 @@ TEST(SceneIo, FrameObjLooksAtTheMeshCentreWithOneLightAndOneGroundPlane) {
     EXPECT_LE(std::fabs(float(dot(d, s.camera.right())) / z), tan_half) << i;
     EXPECT_LE(std::fabs(float(dot(d, s.camera.up())) / z), tan_half) << i;
   }
-  // The light is above the mesh; the ground is the plane y = lo.y with a checker.
+  // The light is above the mesh; the ground is the plane y = lo.y - R / 1000 with a checker.
   EXPECT_GT(s.lights[0].position[1], box.hi[1]);
   expect_vec(s.planes[0].n, 0, 1, 0);
-  EXPECT_FLOAT_EQ(s.planes[0].d, -box.lo[1]);
+  const vec4 half = box.extent() * 0.5f;
+  const float radius = std::sqrt(float(dot(half, half)));
+  EXPECT_FLOAT_EQ(s.planes[0].d, -(box.lo[1] - 1e-3f * radius));
   EXPECT_GT(s.materials.at(s.plane_materials[0]).checker_scale, 0.0f);
   EXPECT_NE(s.find_material("tetra.obj:mirror"), -1);
   EXPECT_EQ(s.find_material("default"), -1);  // only materials that faces use are added
+}
+
+// Renders `s` (96 x 72, no recursion) with and without its ground plane: wherever the mesh is
+// seen without the plane, the plane must not change the pixel (at the mesh's lowest y it
+// z-fought with a floor in the mesh, and hid a flat mesh).
+void expect_ground_never_shows_through(const Scene& s) {
+  RenderSettings st;
+  st.width = 96;
+  st.height = 72;
+  st.depth = 0;
+  Scene bare = s;
+  bare.planes.clear();
+  bare.plane_materials.clear();
+  Image with, without;
+  const Schedule serial{Backend::serial, 1, 1};
+  const Accel a = Accel::build(s, BvhConfig{}), b = Accel::build(bare, BvhConfig{});
+  render_frame(Renderer(s, a, st), serial, with);
+  render_frame(Renderer(bare, b, st), serial, without);
+  std::size_t mesh_pixels = 0, changed = 0;
+  for (std::size_t i = 0; i < without.rgb.size(); i += 3) {
+    const bool background = without.rgb[i] == s.background[0] &&
+                            without.rgb[i + 1] == s.background[1] &&
+                            without.rgb[i + 2] == s.background[2];
+    if (background) continue;
+    ++mesh_pixels;
+    changed += with.rgb[i] != without.rgb[i] || with.rgb[i + 1] != without.rgb[i + 1] ||
+               with.rgb[i + 2] != without.rgb[i + 2];
+  }
+  EXPECT_GT(mesh_pixels, 200u);
+  EXPECT_EQ(changed, 0u) << "of " << mesh_pixels << " mesh pixels";
+}
+
+TEST(SceneIo, TheGroundOfAFramedObjNeverShowsThroughTheMesh) {
+  // The Cornell room's floor lies at its lowest y; so does all of a flat quad.
+  expect_ground_never_shows_through(frame_obj(source_file("scenes/cornell_room.obj")));
+  TempDir dir;
+  expect_ground_never_shows_through(
+      frame_obj(dir.write("flat.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 4 3 2\n")));
 }
 
 TEST(SceneIo, LoadSceneFramesABareObjAndDispatchesOnTheExtension) {
