@@ -414,6 +414,22 @@ std::size_t face_line(std::string_view text, std::size_t face) {
 
 }  // namespace
 
+std::string degenerate_reason(const Mesh& mesh, const AreaOutOfRange& range) {
+  if (range.too_large == 0 && range.too_small == 0) return " (zero or non-finite area)";
+  Aabb box;
+  for (const vec4& p : mesh.positions) box.grow(p);
+  const vec4 size = box.extent();
+  const double span =
+      std::sqrt(double(size[0]) * size[0] + double(size[1]) * size[1] + double(size[2]) * size[2]);
+  if (range.too_large >= range.too_small)
+    return ": the coordinates are too large for float arithmetic: the triangle areas overflow "
+           "(the mesh spans " +
+           fmt(span) + "; edges must be shorter than about 4e9)";
+  return ": the coordinates are too small for float arithmetic: the triangle areas underflow "
+         "to 0 (the mesh spans " +
+         fmt(span) + "; edges must be longer than about 1e-11)";
+}
+
 Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& scene,
                  int override_material) {
   // Without a byte-order mark; copied only when there is one (the text may be large).
@@ -462,12 +478,13 @@ Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& s
               : ""));
   }
   const std::size_t faces = mesh.faces.size();
+  const AreaOutOfRange range = area_out_of_range(mesh);  // before the faces go
   scene.degenerate_triangles += mesh.drop_degenerate();
   if (mesh.faces.empty()) {
     error_at(path, 0, 0,
              faces == 0 ? "no faces"
-                        : "all " + std::to_string(faces) +
-                              " faces are degenerate (zero or non-finite area)");
+                        : "all " + std::to_string(faces) + " faces are degenerate" +
+                              degenerate_reason(mesh, range));
   }
   return mesh;
 }

@@ -27,4 +27,9 @@ constexpr std::size_t kMaxObjBytes = 4096ull << 20;  // an OBJ or MTL file
 Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
                  int override_material);
 
+// Why every face of `mesh` was dropped as degenerate, as the end of a message: " (zero or
+// non-finite area)", or that the coordinates are too large or too small for a float area
+// (`range`: area_out_of_range of the mesh before its faces were dropped).
+std::string degenerate_reason(const Mesh& mesh, const AreaOutOfRange& range);
+
 }  // namespace rt2::io

@@ -548,10 +548,11 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
         if (!std::all_of(mesh.positions.begin(), mesh.positions.end(),
                          [](const vec4& p) { return finite(p); }))
           r.fail_table(r.path() + ": the transform makes vertices of '" + path + "' non-finite");
+        const AreaOutOfRange range = area_out_of_range(mesh);
         scene.degenerate_triangles += mesh.drop_degenerate();  // a tiny scale can flatten faces
         if (mesh.faces.empty())
           r.fail_table(r.path() + ": every face of '" + path +
-                       "' is degenerate after the transform");
+                       "' is degenerate after the transform" + degenerate_reason(mesh, range));
         scene.meshes.push_back(std::move(mesh));
       });
 }

@@ -314,6 +314,11 @@ def obj_faces():
        "warning: obj_polygon_figure_eight.obj:6: a polygon of 6 corners intersects itself or is "
        "degenerate\nfaces: 2\ndegenerate: 2\n",
        obj="v 0 0 0\nv 1 -1 0\nv 1 1 0\nv -1 -1 0\nv -1 1 0\nf 1 2 3 1 4 5\n")
+    # Coordinates a float area cannot hold: named, not "degenerate" alone.
+    obj_error("obj_coordinates_1e37", "v 0 0 0\nv 1e37 0 0\nv 0 1e37 0\nf 1 2 3\n",
+              "the coordinates are too large for float arithmetic")
+    obj_error("obj_coordinates_1e-30", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\n",
+              "the coordinates are too small for float arithmetic")
 
 
 # ---- TOML numbers: NaN, inf and absurd values ----------------------------------------------

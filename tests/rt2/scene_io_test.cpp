@@ -1112,6 +1112,18 @@ TEST(SceneIo, ObjWithoutFacesIsAnError) {
   expect_obj_error("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", 0, "degenerate");
 }
 
+TEST(SceneIo, CoordinatesTooLargeOrSmallForFloatAreasAreNamed) {
+  // Not "all faces are degenerate": the triangles are fine, a float cannot hold their areas.
+  expect_obj_error("v 0 0 0\nv 1e37 0 0\nv 0 1e37 0\nf 1 2 3\n", 0,
+                   "all 1 faces are degenerate: the coordinates are too large for float "
+                   "arithmetic: the triangle areas overflow (the mesh spans 1.4142135");
+  expect_obj_error("v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\nf 1 3 2\n", 0,
+                   "all 2 faces are degenerate: the coordinates are too small for float "
+                   "arithmetic: the triangle areas underflow to 0");
+  expect_obj_error("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", 0,
+                   "all 1 faces are degenerate (zero or non-finite area)");
+}
+
 TEST(SceneIo, TinyobjloaderErrorsAreReportedOnOneLine) {
   // tinyobjloader itself rejects index 0 in a line element.
   expect_obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 0 1\nf 1 2 3\n", 0, "tinyobjloader");
