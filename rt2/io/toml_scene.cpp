@@ -440,7 +440,7 @@ Material read_material(const Reader& r) {
   m.shininess = r.number("shininess", m.shininess, kNonNegative);
   m.reflectivity = r.number("reflectivity", m.reflectivity, kUnit);
   m.transparency = r.number("transparency", m.transparency, kUnit);
-  m.ior = r.number("ior", m.ior, kPositive);
+  m.ior = r.number("ior", m.ior, kIor);
   if (r.find("checker")) {
     const Reader c = r.table("checker", {"color", "scale"});
     m.diffuse2 = c.vector("color", m.diffuse2, kNonNegative);

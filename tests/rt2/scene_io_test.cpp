@@ -948,8 +948,8 @@ TEST(SceneIo, ValuesOutOfRangeAreErrors) {
        "materials.m.reflectivity must be in [0, 1] (got 1.5)"},
       {kCamera + "[materials.m]\ntransparency = -0.1\n", 5,
        "materials.m.transparency must be in [0, 1]"},
-      {kCamera + "[materials.m]\nior = 0\n", 5, "materials.m.ior must be > 0 (got 0)"},
-      {kCamera + "[materials.m]\nior = -1.5\n", 5, "materials.m.ior must be > 0"},
+      {kCamera + "[materials.m]\nior = 0\n", 5, "materials.m.ior must be in (0, 100] (got 0)"},
+      {kCamera + "[materials.m]\nior = -1.5\n", 5, "materials.m.ior must be in (0, 100]"},
       {kCamera + "[materials.m]\ndiffuse = [0.5, -0.5, 0]\n", 5,
        "materials.m.diffuse[1] must be >= 0"},
       {kCamera + "[materials.m]\nchecker = { scale = 0 }\n", 5,
@@ -960,6 +960,18 @@ TEST(SceneIo, ValuesOutOfRangeAreErrors) {
        "lights[0].color[0] must be >= 0"},
       {kCamera + "[world]\nambient = [0, 0, -0.2]\n", 5, "world.ambient[2] must be >= 0"},
   });
+}
+
+// MTL's Ni is bounded to 100 (rt2/io/mtl.h); a TOML ior the same (1e6 loaded before).
+TEST(SceneIo, IorAboveOneHundredIsAnError) {
+  expect_scene_errors({
+      {kCamera + "[materials.m]\nior = 100.5\n", 5,
+       "materials.m.ior must be in (0, 100] (got 100.5)"},
+      {kCamera + "[materials.m]\nior = 1e6\n", 5, "materials.m.ior must be in (0, 100]"},
+  });
+  TempDir dir;
+  EXPECT_FLOAT_EQ(material_named(load_text(dir, kCamera + "[materials.m]\nior = 100\n"), "m").ior,
+                  100.0f);
 }
 
 TEST(SceneIo, ZeroPlaneNormalIsAnError) {
