@@ -51,6 +51,28 @@ std::size_t Mesh::drop_degenerate() {
   return dropped;
 }
 
+AreaOutOfRange area_out_of_range(const Mesh& mesh) {
+  AreaOutOfRange range;
+  const std::size_t n = mesh.positions.size();
+  for (const auto& f : mesh.faces) {
+    if (f[0] >= n || f[1] >= n || f[2] >= n) continue;
+    const vec4 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
+    const vec4 cf = cross(b - a, c - a);
+    const float a2 = dot(cf, cf);  // as drop_degenerate computes it
+    if (a2 > 0.0f && std::isfinite(a2)) continue;
+    const double ux = double(b[0]) - a[0], uy = double(b[1]) - a[1], uz = double(b[2]) - a[2];
+    const double vx = double(c[0]) - a[0], vy = double(c[1]) - a[1], vz = double(c[2]) - a[2];
+    const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
+    const double d2 = x * x + y * y + z * z;
+    if (!(d2 > 0.0) || !std::isfinite(d2)) continue;  // degenerate in double too
+    if (std::isfinite(a2))
+      ++range.too_small;
+    else
+      ++range.too_large;
+  }
+  return range;
+}
+
 namespace {
 
 // Row-major 3x3 rotation R = Rz * Ry * Rx (x first), angles in degrees.

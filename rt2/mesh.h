@@ -30,6 +30,14 @@ struct Mesh {
   std::size_t drop_degenerate();
 };
 
+// Faces that drop_degenerate drops although they are not degenerate: their area, positive
+// and finite in double precision, overflows a float (coordinates too large) or underflows to
+// 0 (too small).
+struct AreaOutOfRange {
+  std::size_t too_large = 0, too_small = 0;
+};
+AreaOutOfRange area_out_of_range(const Mesh& mesh);
+
 // An affine transform applied to a mesh at load: scale, then rotate (degrees about x, then
 // y, then z), then translate. Normals are transformed by the inverse transpose.
 struct Transform {

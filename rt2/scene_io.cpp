@@ -32,9 +32,12 @@ using io::fmt;
 using io::kMaxObjBytes;
 using io::obj_to_mesh;
 using io::one_line;
-using io::read_file;
+using io::read_text_file;
 using io::read_toml_scene;
 using io::validate;
+
+// How far under a bare OBJ its ground plane is, in units of R (half the mesh's diagonal).
+constexpr float kGroundGap = 1e-3f;
 
 // Runs a loader so that only rt2::Error leaves it, always with a one-line message.
 template <class F>
@@ -92,9 +95,11 @@ Scene frame_obj(const std::string& obj_path) {
     ground.diffuse = vec4(0.8f, 0.8f, 0.8f);
     ground.diffuse2 = vec4(0.3f, 0.3f, 0.3f);
     ground.checker_scale = r / 4.0f;
+    // The ground sits a thousandth of R under the mesh: at the mesh's lowest y exactly, it
+    // would z-fight with a mesh's own floor and hide a flat mesh lying on it.
     Plane floor;
     floor.n = vec4(0.0f, 1.0f, 0.0f);
-    floor.d = -box.lo[1];  // y = lo.y
+    floor.d = -(box.lo[1] - kGroundGap * r);  // y = lo.y - R / 1000
     scene.planes.push_back(floor);
     scene.plane_materials.push_back(scene.add_material("ground", ground));
     scene.ambient = vec4(0.15f, 0.15f, 0.15f);
@@ -109,7 +114,7 @@ Mesh load_obj(const std::string& path, Scene& scene, int override_material) {
   const std::size_t degenerate = scene.degenerate_triangles;
   try {
     return guarded(path, [&] {
-      return obj_to_mesh(path, read_file(path, kMaxObjBytes, ""), scene, override_material);
+      return obj_to_mesh(path, read_text_file(path, kMaxObjBytes, ""), scene, override_material);
     });
   } catch (const Error&) {  // leave the scene as it was
     scene.materials.resize(materials);

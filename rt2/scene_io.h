@@ -29,7 +29,8 @@ Scene load_toml_scene(const std::string& path);
 
 // A bare OBJ, framed: camera from its bounding box (looking at the centre from the front,
 // slightly above, the whole box in view), one white light above-front, a ground plane with a
-// checker material just under the box, MTL materials or a default grey material.
+// checker material just under the box (R / 1000 below it, R half the box's diagonal), MTL
+// materials or a default grey material.
 Scene frame_obj(const std::string& obj_path);
 
 // Reads an OBJ (and its MTL libraries) through tinyobjloader into a Mesh. Each face's material

@@ -1,9 +1,11 @@
-// rt2/io/mtl.cpp — the MTL → Material mapping of scenes/FORMAT.md and the scan of MTL text
-// for the facts tinyobjloader does not report (internal; see rt2/io/mtl.h).
+// rt2/io/mtl.cpp — reading MTL text, checked line by line, and the MTL → Material mapping of
+// scenes/FORMAT.md (internal; see rt2/io/mtl.h).
 #include "rt2/io/mtl.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "rt2/io/text.h"
@@ -11,84 +13,176 @@
 namespace rt2::io {
 namespace {
 
-float clamp_or(float v, float lo, float hi, float fallback) {
-  return std::isnan(v) ? fallback : std::clamp(v, lo, hi);
+constexpr std::string_view kColorKeys[] = {"Ka", "Kd", "Ks", "Ke", "Kt", "Tf", "Kr"};
+constexpr std::string_view kNumberKeys[] = {"Ns", "Ni", "d",  "Tr",  "sharpness", "Pr",
+                                            "Pm", "Ps", "Pc", "Pcr", "aniso",     "anisor"};
+constexpr std::string_view kTextureKeys[] = {"bump", "disp", "decal", "refl", "norm"};
+
+template <std::size_t N>
+bool one_of(std::string_view key, const std::string_view (&keys)[N]) {
+  return std::find(std::begin(keys), std::end(keys), key) != std::end(keys);
 }
 
-vec4 mtl_color(const tinyobj::real_t c[3]) {
-  return vec4(clamp_or(c[0], 0, 1, 0), clamp_or(c[1], 0, 1, 0), clamp_or(c[2], 0, 1, 0));
+bool is_texture(std::string_view key) {
+  return key.starts_with("map_") || one_of(key, kTextureKeys);
 }
 
-// Kr (an rt2 extension): one number, or three of which the largest counts.
-float mtl_kr(const std::string& value, const MtlFacts& facts, const std::string& material) {
-  const std::vector<std::string_view> t = split_blanks(value);
-  float kr = 0.0f;
-  for (const std::string_view v : t) {
-    double x = 0.0;
-    if (!parse_double(v, x) || std::isnan(x))
-      error_at(facts.file, facts.kr_line, 0,
-               "material '" + material + "': Kr must be a number (got '" + value + "')");
-    kr = std::max(kr, clamp_or(static_cast<float>(x), 0, 1, 0));
+float clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
+
+vec4 color(const float c[3]) { return vec4(clamp01(c[0]), clamp01(c[1]), clamp01(c[2])); }
+
+// The statements of one MTL file, read in order.
+class MtlReader {
+ public:
+  MtlReader(const std::string& file, MtlMaterials& wanted) : file_(file), wanted_(wanted) {}
+
+  void line(std::size_t line, std::string_view s) {
+    if (s.empty() || s.starts_with('#')) return;
+    line_ = line;
+    const std::vector<std::string_view> t = split_blanks(s);
+    check_exponents(file_, line, t);  // as in an OBJ: none is a sensible number
+    const std::string_view key = t[0];
+    const std::span<const std::string_view> values = std::span(t).subspan(1);
+    if (key == "newmtl") {
+      start(after_keyword(s));
+    } else if (one_of(key, kColorKeys)) {
+      read_color(key, values);
+    } else if (one_of(key, kNumberKeys)) {
+      read_number(key, values);
+    } else if (key == "illum") {
+      read_illum(values);
+    } else if (is_texture(key)) {
+      if (key == "map_Kd" && current_) current_->diffuse_texture = true;
+      if (current_ && !texture_line_) {
+        texture_line_ = line;
+        texture_key_ = key;
+      }
+    }
   }
-  if (t.empty())
-    error_at(facts.file, facts.kr_line, 0, "material '" + material + "': Kr needs a value");
-  return kr;
-}
+
+  // The warnings, once per file.
+  void finish() const {
+    if (texture_line_)
+      warn(location(file_, texture_line_, 0) + ": textures are not supported; '" +
+           std::string(texture_key_) +
+           "' and every other texture statement of this file are ignored (materials keep their "
+           "colours)");
+    if (spectral_line_)
+      warn(location(file_, spectral_line_, 0) +
+           ": spectral and CIE XYZ colours are not supported; those of this file are ignored");
+  }
+
+ private:
+  void start(std::string_view name) {
+    const auto it = wanted_.find(name);
+    current_ = nullptr;
+    name_ = name;
+    if (it == wanted_.end() || it->second) return;  // not asked for, or defined before
+    it->second.emplace();
+    current_ = &*it->second;
+    current_->file = file_;
+  }
+
+  [[noreturn]] void fail(const std::string& msg) const {
+    error_at(file_, line_, 0,
+             (name_ ? "material '" + std::string(*name_) + "': " : std::string()) + msg);
+  }
+
+  float number(std::string_view key, std::string_view token) const {
+    double v = 0.0;
+    if (!parse_double(token, v))
+      fail(std::string(key) + " must be a number (got '" + std::string(token) + "')");
+    if (!std::isfinite(v) || std::fabs(v) > FLT_MAX)
+      fail(std::string(key) + " must be a finite number (got '" + std::string(token) + "')");
+    return static_cast<float>(v);
+  }
+
+  // 1 number (grey: g = b = r, as the MTL specification says) or 3.
+  void read_color(std::string_view key, std::span<const std::string_view> values) {
+    if (!values.empty() && (values[0] == "spectral" || values[0] == "xyz")) {
+      if (current_ && !spectral_line_) spectral_line_ = line_;
+      return;
+    }
+    if (values.size() != 1 && values.size() != 3)
+      fail(std::string(key) + " needs 1 or 3 numbers (got " + std::to_string(values.size()) + ")");
+    float c[3];
+    for (std::size_t i = 0; i < 3; ++i) c[i] = number(key, values[values.size() == 1 ? 0 : i]);
+    if (!current_) return;
+    MtlMaterial& m = *current_;
+    if (key == "Ka") std::copy(c, c + 3, m.ka);
+    if (key == "Kd") {
+      std::copy(c, c + 3, m.kd);
+      m.has_kd = true;
+    }
+    if (key == "Ks") std::copy(c, c + 3, m.ks);
+    if (key == "Kr") {
+      m.kr = std::max({c[0], c[1], c[2]});
+      m.has_kr = true;
+    }
+  }
+
+  void read_number(std::string_view key, std::span<const std::string_view> values) {
+    if (key == "d" && !values.empty() && values[0] == "-halo") values = values.subspan(1);
+    if (values.size() != 1)
+      fail(std::string(key) + " needs 1 number (got " + std::to_string(values.size()) + ")");
+    const float v = number(key, values[0]);
+    if (!current_) return;
+    MtlMaterial& m = *current_;
+    if (key == "Ns") m.ns = v;
+    if (key == "Ni") {
+      m.ni = v;
+      m.has_ni = true;
+    }
+    if (key == "d") {
+      m.d = v;
+      m.has_d = true;
+    }
+    if (key == "Tr") {
+      m.tr = v;
+      m.has_tr = true;
+    }
+  }
+
+  void read_illum(std::span<const std::string_view> values) {
+    const std::string got = values.empty() ? "nothing" : "'" + std::string(values[0]) + "'";
+    double v = 0.0;
+    if (values.size() != 1 || !parse_double(values[0], v) || !(v >= 0 && v <= 10) ||
+        v != std::floor(v))
+      fail("illum must be an integer from 0 to 10 (got " + got + ")");
+    if (current_) current_->illum = static_cast<int>(v);
+  }
+
+  const std::string& file_;
+  MtlMaterials& wanted_;
+  MtlMaterial* current_ = nullptr;        // the material being read, if it is kept
+  std::optional<std::string_view> name_;  // the material being read, for messages
+  std::size_t line_ = 0;
+  std::size_t texture_line_ = 0, spectral_line_ = 0;  // the first, in materials kept
+  std::string_view texture_key_;
+};
 
 }  // namespace
 
-std::string_view newmtl_name(std::string_view line) {
-  if (!line.starts_with("newmtl ") && !line.starts_with("newmtl\t")) return {};
-  const std::string_view rest = line.substr(7);
-  const std::size_t first = rest.find_first_not_of(" \t");  // the line's end is trimmed
-  return first == std::string_view::npos ? std::string_view() : rest.substr(first);
+void read_mtl(const std::string& file, std::string_view text, MtlMaterials& wanted) {
+  MtlReader reader(file, wanted);
+  for_each_line(text, [&](std::size_t line, std::string_view s) { reader.line(line, s); });
+  reader.finish();
 }
 
-std::string normalize_mtl(std::string_view text) {
-  std::string out;
-  out.reserve(text.size() + 1);
-  for_each_line(text, [&](std::size_t, std::string_view s) {
-    const std::string_view name = newmtl_name(s);
-    if (name.empty())
-      out += s;
-    else
-      out.append("newmtl ").append(name);
-    out += '\n';
-  });
-  return out;
-}
-
-void scan_mtl(const std::string& file, std::string_view text,
-              std::map<std::string, MtlFacts>& facts) {
-  MtlFacts* current = nullptr;
-  for_each_line(text, [&](std::size_t line, std::string_view s) {
-    if (s.starts_with('#')) return;
-    const std::string_view name = newmtl_name(s);
-    if (!name.empty()) {
-      current = &facts[std::string(name)];
-      *current = MtlFacts{file};
-      return;
-    }
-    // Values and texture options: tinyobjloader may read any of them as a number.
-    check_exponents(file, line, split_blanks(s));
-    if (current && (s.starts_with("Ni ") || s.starts_with("Ni\t"))) {
-      current->has_ni = true;
-    } else if (current && (s.starts_with("Kr ") || s.starts_with("Kr\t"))) {
-      current->kr_line = line;
-    }
-  });
-}
-
-Material from_mtl(const tinyobj::material_t& t, const MtlFacts& facts) {
+Material from_mtl(const MtlMaterial& t) {
   Material m;
-  m.ambient = mtl_color(t.ambient);
-  m.diffuse = mtl_color(t.diffuse);
-  m.specular = mtl_color(t.specular);
-  m.shininess = clamp_or(t.shininess, 0.0f, 1e4f, m.shininess);
-  if (facts.has_ni && t.ior > 0.0f && std::isfinite(t.ior)) m.ior = std::min(t.ior, 100.0f);
-  const float opacity = clamp_or(t.dissolve, 0.0f, 1.0f, 1.0f);  // d, or 1 - Tr
+  m.ambient = color(t.ka);
+  m.diffuse = t.has_kd || !t.diffuse_texture ? color(t.kd) : vec4(0.6f, 0.6f, 0.6f);
+  m.specular = color(t.ks);
+  m.shininess = std::clamp(t.ns, 0.0f, 1e4f);
+  // Exponent 0 would add Ks over the whole lit side (cos^0 = 1): 3ds Max writes Ns 0 with
+  // Ks > 0 for matte surfaces, so 0 means no highlight.
+  if (m.shininess == 0.0f) m.specular = vec4(0.0f, 0.0f, 0.0f);
+  if (t.has_ni && t.ni > 0.0f) m.ior = std::min(t.ni, 100.0f);
+  // d, else 1 − Tr: the opacity.
+  const float opacity = t.has_d ? clamp01(t.d) : t.has_tr ? clamp01(1.0f - t.tr) : 1.0f;
   m.transparency = 1.0f - opacity;
-  const float ks = std::max({m.specular[0], m.specular[1], m.specular[2]});
+  const float ks = std::max({clamp01(t.ks[0]), clamp01(t.ks[1]), clamp01(t.ks[2])});
   switch (t.illum) {
     case 3:
     case 5:  // reflection
@@ -103,8 +197,7 @@ Material from_mtl(const tinyobj::material_t& t, const MtlFacts& facts) {
     default:
       break;
   }
-  const auto kr = t.unknown_parameter.find("Kr");
-  if (kr != t.unknown_parameter.end()) m.reflectivity = mtl_kr(kr->second, facts, t.name);
+  if (t.has_kr) m.reflectivity = clamp01(t.kr);
   return m;
 }
 

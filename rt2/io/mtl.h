@@ -1,17 +1,18 @@
-// rt2/io/mtl.h — MTL materials into rt2 Materials (internal).
+// rt2/io/mtl.h — MTL material libraries, read by rt2 and mapped to Materials (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API. tinyobjloader parses the MTL
-// libraries; from_mtl maps each of its materials to a Material as scenes/FORMAT.md
-// documents (colours, shininess, Ni, d/Tr, illum, and the rt2 extension Kr). scan_mtl reads
-// the MTL text for what tinyobjloader does not report (whether Ni was given, the line of a
-// Kr), so that a bad Kr can be reported at its line; normalize_mtl makes the material names
-// that tinyobjloader sees agree with those scan_mtl and `usemtl` use.
+// Part of the implementation of rt2/scene_io.h, not an API. rt2 reads MTL text itself, not
+// through tinyobjloader, which reads `Kd 0.5` as dark red (0.5, 0, 0), turns `Kd red` or
+// `Ns nan` into numbers without a word, and keeps some 2 KB of texture fields per material
+// (2.3 GB for a file of a million materials). read_mtl checks every statement rt2 knows, an
+// error naming the MTL file and line, keeps only the materials the OBJ asks for, and warns
+// once per file about what rt2 ignores (textures); from_mtl maps a material to a Material as
+// scenes/FORMAT.md documents.
 #pragma once
 
-#include <tiny_obj_loader.h>
-
 #include <cstddef>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -19,33 +20,43 @@
 
 namespace rt2::io {
 
-// What tinyobjloader does not tell about an MTL material: where it is, whether Ni was given
-// (it reports a missing Ni as 1) and the line of a Kr.
-struct MtlFacts {
-  std::string file;
+// One MTL material as written: colours as r g b (one number is grey), the rest as given. The
+// defaults are tinyobjloader's, so that files read as they did before rt2 read them itself.
+struct MtlMaterial {
+  std::string file;                  // the MTL file, for messages
+  float ka[3] = {0.0f, 0.0f, 0.0f};  // Ka
+  float kd[3] = {0.0f, 0.0f, 0.0f};  // Kd
+  float ks[3] = {0.0f, 0.0f, 0.0f};  // Ks
+  bool has_kd = false;
+  bool diffuse_texture = false;  // map_Kd: without Kd, the diffuse colour is 0.6 grey
+  float ns = 1.0f;               // Ns
+  float ni = 1.0f;               // Ni
   bool has_ni = false;
-  std::size_t kr_line = 0;
+  float d = 1.0f;  // d
+  bool has_d = false;
+  float tr = 0.0f;  // Tr
+  bool has_tr = false;
+  int illum = 0;
+  float kr = 0.0f;  // Kr (an rt2 extension): the largest of its numbers
+  bool has_kr = false;
 };
 
-// The name of the material that the MTL line `line` (blanks trimmed at both ends, as
-// for_each_line gives it) starts, or "" when it is not a `newmtl` line. Blanks between
-// `newmtl` and the name are not part of it; blanks inside it are ("newmtl  my red" names
-// "my red"). tinyobjloader keeps all but the first blank ("newmtl  red" is " red" to it), so
-// that `usemtl red`, whose name it reads as one token, would not find the material:
-// normalize_mtl rewrites the text that tinyobjloader sees to agree with this name.
-std::string_view newmtl_name(std::string_view line);
+// The materials an OBJ asks for by name (its `usemtl` names), each empty until an MTL library
+// defines it.
+using MtlMaterials = std::map<std::string, std::optional<MtlMaterial>, std::less<>>;
 
-// The MTL `text` with each line as for_each_line gives it (blanks trimmed, "\n" endings) and
-// each `newmtl` line rewritten as "newmtl " + newmtl_name: what rt2 gives tinyobjloader, so
-// that its material names are those of scan_mtl.
-std::string normalize_mtl(std::string_view text);
-
-// Collects the MtlFacts of each `newmtl` in the MTL `text` of `file` into `facts` (by
-// material name as newmtl_name reads it; a later material of the same name starts afresh).
-void scan_mtl(const std::string& file, std::string_view text,
-              std::map<std::string, MtlFacts>& facts);
+// Reads the MTL `text` of `file`. Every statement rt2 knows is checked: colours (Ka, Kd, Ks,
+// Ke, Kt, Tf, and Kr) take 1 number (grey) or 3, Ns, Ni, d (also `d -halo x`), Tr,
+// sharpness and the PBR numbers take one, each finite and within float range, illum an
+// integer from 0 to 10; a problem throws rt2::Error "file:LINE: material 'x': Kd must be a
+// number (got 'red')". `newmtl NAME` takes the rest of the line as the name (blanks trimmed).
+// A material named in `wanted` that has no definition yet gets this one (the first definition
+// wins); the others are checked and dropped. Prints one warning for the file if a material
+// it keeps has a texture (map_Kd, bump, ...: not supported) and one if it has a spectral or
+// CIE XYZ colour (ignored).
+void read_mtl(const std::string& file, std::string_view text, MtlMaterials& wanted);
 
 // The mapping documented in scenes/FORMAT.md.
-Material from_mtl(const tinyobj::material_t& t, const MtlFacts& facts);
+Material from_mtl(const MtlMaterial& t);
 
 }  // namespace rt2::io

@@ -1,12 +1,15 @@
 // rt2/io/obj_mesh.cpp — OBJ text and its MTL libraries into a Mesh (internal; see
 // rt2/io/obj_mesh.h).
 //
-// tinyobjloader parses, but it accepts bad input silently (an unparsable coordinate
+// tinyobjloader parses the OBJ, but it accepts bad input silently (an unparsable coordinate
 // becomes 0, an out-of-range index is a warning or a skipped face), so the OBJ text is
-// scanned first to find such problems with their line numbers. MTL libraries are found and
-// read here too (relative to the OBJ), which gives the "missing library" warning and the
-// line numbers of MTL values that tinyobjloader does not report (rt2/io/mtl.h). Then the
-// faces are assembled into a Mesh with one scene material each.
+// scanned first to find such problems with their line numbers; the scan also notes what
+// tinyobjloader does not keep or keeps wrongly: the material each face uses (`usemtl` takes
+// the rest of the line as the name) and the corner count of faces of 256 corners or more
+// (tinyobjloader stores it in a byte). MTL libraries are found and read here (relative to
+// the OBJ, rt2/io/mtl.h), only the materials the faces name kept. tinyobjloader leaves
+// polygons whole; rt2/io/polygon_triangulation.h splits them. Then the faces are assembled
+// into a Mesh with one scene material each.
 #include "rt2/io/obj_mesh.h"
 
 #include <tiny_obj_loader.h>
@@ -18,7 +21,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <set>
 #include <span>
 #include <string>
@@ -30,6 +32,7 @@
 
 #include "rt2/error.h"
 #include "rt2/io/mtl.h"
+#include "rt2/io/polygon_triangulation.h"
 #include "rt2/io/text.h"
 
 namespace rt2::io {
@@ -45,11 +48,17 @@ bool parse_index(std::string_view token, long long& v) {
   return !token.empty() && r.ec == std::errc() && r.ptr == token.data() + token.size();
 }
 
-// What an OBJ file says, as far as the checks need it.
+// What an OBJ file says, as far as the checks and the assembly need it.
 struct ObjScan {
   std::size_t faces = 0;
-  std::vector<std::string> libraries;                       // mtllib names, in order
-  std::vector<std::pair<std::string, std::size_t>> usemtl;  // name, line
+  std::vector<std::string> libraries;  // mtllib names, in order
+  // Faces of 256 corners or more: (face number from 0, corners).
+  std::vector<std::pair<std::size_t, std::size_t>> big_faces;
+  // The usemtl names in the order of their first use, with that line; and from face `first`
+  // on, the faces use name number `second`.
+  std::vector<std::string> material_names;
+  std::vector<std::size_t> material_lines;
+  std::vector<std::pair<std::size_t, std::uint32_t>> material_runs;
 };
 
 struct IndexKind {
@@ -172,6 +181,7 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
     total[2] += head == "vn";
   });
   ObjScan scan;
+  std::unordered_map<std::string_view, std::uint32_t> name_numbers;
   std::size_t defined[3] = {0, 0, 0};
   for_each_line(text, [&](std::size_t line, std::string_view s) {
     if (s.empty() || s[0] == '#') return;
@@ -192,11 +202,19 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
       check_tag(file, line, s);
     } else if (t[0] == "f") {
       check_face(file, line, t, defined, total);
+      if (t.size() - 1 >= 256) scan.big_faces.emplace_back(scan.faces, t.size() - 1);
       ++scan.faces;
     } else if (t[0] == "mtllib") {
       for (std::size_t i = 1; i < t.size(); ++i) scan.libraries.emplace_back(t[i]);
     } else if (t[0] == "usemtl") {
-      scan.usemtl.emplace_back(t.size() > 1 ? std::string(t[1]) : std::string(), line);
+      const std::string_view name = after_keyword(s);  // "usemtl Hard Wood": "Hard Wood"
+      const auto [it, added] =
+          name_numbers.try_emplace(name, static_cast<std::uint32_t>(scan.material_names.size()));
+      if (added) {
+        scan.material_names.emplace_back(name);
+        scan.material_lines.push_back(line);
+      }
+      scan.material_runs.emplace_back(scan.faces, it->second);
     }
   });
   return scan;
@@ -206,29 +224,33 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
 
 // The scene material of each face of one OBJ: `override_material` if >= 0, else its MTL
 // material, else "default". Added on first use, so that MTL entries no face uses and an
-// unneeded default do not clutter the scene.
+// unneeded default do not clutter the scene. Faces are asked for in order.
 class FaceMaterials {
  public:
-  FaceMaterials(Scene& scene, const std::string& obj_path,
-                const std::vector<tinyobj::material_t>& mtl,
-                const std::map<std::string, MtlFacts>& facts, int override_material)
+  FaceMaterials(Scene& scene, const std::string& obj_path, const ObjScan& scan,
+                const MtlMaterials& mtl, int override_material)
       : scene_(scene),
         obj_path_(obj_path),
+        scan_(scan),
         mtl_(mtl),
-        facts_(facts),
-        ids_(mtl.size(), -1),
+        ids_(scan.material_names.size(), -1),
         override_(override_material) {}
 
-  std::uint32_t operator()(int mtl_id) {
+  std::uint32_t operator()(std::size_t face) {
     if (override_ >= 0) return static_cast<std::uint32_t>(override_);
-    if (mtl_id < 0 || static_cast<std::size_t>(mtl_id) >= mtl_.size()) return fallback();
-    int& id = ids_[static_cast<std::size_t>(mtl_id)];
+    const auto& runs = scan_.material_runs;
+    while (run_ < runs.size() && runs[run_].first <= face) ++run_;
+    if (run_ == 0) return fallback();
+    const std::uint32_t name = runs[run_ - 1].second;
+    int& id = ids_[name];
     if (id < 0) {
-      const tinyobj::material_t& t = mtl_[static_cast<std::size_t>(mtl_id)];
-      const auto it = facts_.find(t.name);
-      const Material m = from_mtl(t, it != facts_.end() ? it->second : MtlFacts{obj_path_});
-      id = static_cast<int>(
-          scene_.add_material(fs::path(obj_path_).filename().string() + ":" + t.name, m));
+      const std::string& mtl_name = scan_.material_names[name];
+      const auto it = mtl_.find(mtl_name);
+      id = it == mtl_.end() || !it->second
+               ? static_cast<int>(fallback())
+               : static_cast<int>(
+                     scene_.add_material(fs::path(obj_path_).filename().string() + ":" + mtl_name,
+                                         from_mtl(*it->second)));
     }
     return static_cast<std::uint32_t>(id);
   }
@@ -244,21 +266,20 @@ class FaceMaterials {
 
   Scene& scene_;
   const std::string& obj_path_;
-  const std::vector<tinyobj::material_t>& mtl_;
-  const std::map<std::string, MtlFacts>& facts_;
-  std::vector<int> ids_;  // the scene material of each MTL material, -1 until used
+  const ObjScan& scan_;
+  const MtlMaterials& mtl_;
+  std::vector<int> ids_;  // the scene material of each usemtl name, -1 until used
   int override_;
   int default_ = -1;
+  std::size_t run_ = 0;  // material_runs before this one have started
 };
 
-// The text of the MTL libraries that exist (read in the order named), warning about the
-// others; facts are collected on the way.
-std::string read_libraries(const std::string& obj_path, const ObjScan& scan, bool quiet,
-                           std::map<std::string, MtlFacts>& facts, bool& missing) {
+// The materials that the usemtl names name, from the MTL libraries that exist (read in the
+// order named), warning about the others. Returns whether one was missing.
+bool read_libraries(const std::string& obj_path, const ObjScan& scan, MtlMaterials& materials) {
   const fs::path folder = fs::path(obj_path).parent_path();
   std::set<std::string> seen;
-  std::string text;
-  missing = false;
+  bool missing = false;
   for (const std::string& name : scan.libraries) {
     if (!seen.insert(name).second) continue;
     const std::string path = (folder / name).string();
@@ -269,17 +290,22 @@ std::string read_libraries(const std::string& obj_path, const ObjScan& scan, boo
       const std::string why = type == fs::file_type::not_found ? "not found"
                               : ec                             ? "cannot be read: " + ec.message()
                                                                : "is not a regular file";
-      if (!quiet)
-        warn(obj_path + ": material library '" + name + "' " + why +
-             "; using the default material");
+      warn(obj_path + ": material library '" + name + "' " + why + "; using the default material");
       continue;
     }
-    const std::string file = read_file(path, kMaxObjBytes, "");
-    const std::string_view mtl = without_bom(file);
-    scan_mtl(path, mtl, facts);
-    text += normalize_mtl(mtl);  // material names as scan_mtl reads them
+    read_mtl(path, without_bom(read_text_file(path, kMaxObjBytes, "")), materials);
   }
-  return text;
+  return missing;
+}
+
+// Materials for faces that name an MTL material the libraries do not have.
+void warn_unknown_usemtl(const std::string& path, const ObjScan& scan, const MtlMaterials& mtl) {
+  for (std::size_t i = 0; i < scan.material_names.size(); ++i) {
+    const auto it = mtl.find(scan.material_names[i]);
+    if (it != mtl.end() && it->second) continue;
+    warn(location(path, scan.material_lines[i], 0) + ": material '" + scan.material_names[i] +
+         "' is not in the material libraries; using the default material");
+  }
 }
 
 // ---- OBJ to Mesh ------------------------------------------------------------------------
@@ -299,8 +325,17 @@ bool usable_normals(const tinyobj::attrib_t& a, const std::vector<tinyobj::shape
   return true;
 }
 
-// Positions (and normals) per distinct corner, faces, and a scene material per face.
-Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMaterials& materials) {
+// Polygons that ear clipping gave up on (rt2/io/polygon_triangulation.h): how many, and the
+// first one's face number and corners.
+struct Fallbacks {
+  std::size_t count = 0, first_face = 0, first_corners = 0;
+};
+
+// Positions (and normals) per distinct corner, faces (polygons triangulated), and a scene
+// material per face. tinyobjloader keeps each polygon's corners in order, and its face
+// count in a byte: the faces of 256 corners or more take theirs from the scan.
+Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, const ObjScan& scan,
+              FaceMaterials& materials, Fallbacks& fallbacks) {
   const tinyobj::attrib_t& a = reader.GetAttrib();
   const std::size_t nv = a.vertices.size() / 3;
   const bool smooth = usable_normals(a, reader.GetShapes());
@@ -308,8 +343,6 @@ Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMat
   mesh.name = path;
   std::unordered_map<std::uint64_t, std::uint32_t> corners;
   auto corner = [&](const tinyobj::index_t& ix) {
-    if (ix.vertex_index < 0 || static_cast<std::size_t>(ix.vertex_index) >= nv)
-      throw Error(path + ": tinyobjloader returned a vertex index out of range");
     const auto v = static_cast<std::size_t>(ix.vertex_index);
     const int n = smooth ? ix.normal_index : -1;
     const std::uint64_t key = (std::uint64_t(v) << 32) | std::uint32_t(n + 1);
@@ -325,36 +358,77 @@ Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, FaceMat
     }
     return it->second;
   };
+  const auto mismatch = [&] {
+    error_at(path, 0, 0, "tinyobjloader returned other faces than the file has");
+  };
+  PolygonTriangulator triangulator;
+  std::vector<vec4> polygon;
+  std::vector<CornerTriangle> triangles;
+  std::size_t face = 0, big = 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const tinyobj::mesh_t& m = shape.mesh;
     std::size_t offset = 0;
-    for (std::size_t f = 0; f < m.num_face_vertices.size(); ++f) {
-      const std::size_t count = m.num_face_vertices[f];
-      if (count == 3 && offset + 3 <= m.indices.size()) {
-        mesh.faces.push_back({corner(m.indices[offset]), corner(m.indices[offset + 1]),
-                              corner(m.indices[offset + 2])});
-        mesh.face_materials.push_back(
-            materials(f < m.material_ids.size() ? m.material_ids[f] : -1));
+    for (const unsigned char byte : m.num_face_vertices) {
+      std::size_t count = byte;
+      if (big < scan.big_faces.size() && scan.big_faces[big].first == face) {
+        count = scan.big_faces[big++].second;
+        if (count % 256 != byte) mismatch();
+      }
+      if (count < 3 || offset + count > m.indices.size()) mismatch();
+      const std::span<const tinyobj::index_t> ix(m.indices.data() + offset, count);
+      for (const tinyobj::index_t& i : ix)
+        if (i.vertex_index < 0 || static_cast<std::size_t>(i.vertex_index) >= nv)
+          error_at(path, 0, 0, "tinyobjloader returned a vertex index out of range");
+      polygon.clear();
+      for (const tinyobj::index_t& i : ix) {
+        const float* p = &a.vertices[3 * static_cast<std::size_t>(i.vertex_index)];
+        polygon.emplace_back(p[0], p[1], p[2]);
+      }
+      triangles.clear();
+      if (!triangulator.triangulate(polygon, triangles) && fallbacks.count++ == 0) {
+        fallbacks.first_face = face;
+        fallbacks.first_corners = count;
+      }
+      const std::uint32_t material = materials(face);
+      for (const CornerTriangle& t : triangles) {
+        mesh.faces.push_back({corner(ix[t[0]]), corner(ix[t[1]]), corner(ix[t[2]])});
+        mesh.face_materials.push_back(material);
       }
       offset += count;
+      ++face;
     }
+    if (offset != m.indices.size()) mismatch();
   }
+  if (face != scan.faces) mismatch();
   return mesh;
 }
 
-// Materials for faces that name an MTL material the libraries do not have.
-void warn_unknown_usemtl(const std::string& path, const ObjScan& scan,
-                         const std::vector<tinyobj::material_t>& mtl) {
-  std::set<std::string> known, warned;
-  for (const auto& m : mtl) known.insert(m.name);
-  for (const auto& [name, line] : scan.usemtl) {
-    if (known.count(name) || !warned.insert(name).second) continue;
-    warn(location(path, line, 0) + ": material '" + name +
-         "' is not in the material libraries; using the default material");
-  }
+// The line of face number `face` (from 0) of the OBJ `text`, for a message.
+std::size_t face_line(std::string_view text, std::size_t face) {
+  std::size_t found = 0, seen = 0;
+  for_each_line(text, [&](std::size_t line, std::string_view s) {
+    if (found == 0 && (s.starts_with("f ") || s.starts_with("f\t")) && seen++ == face) found = line;
+  });
+  return found;
 }
 
 }  // namespace
+
+std::string degenerate_reason(const Mesh& mesh, const AreaOutOfRange& range) {
+  if (range.too_large == 0 && range.too_small == 0) return " (zero or non-finite area)";
+  Aabb box;
+  for (const vec4& p : mesh.positions) box.grow(p);
+  const vec4 size = box.extent();
+  const double span =
+      std::sqrt(double(size[0]) * size[0] + double(size[1]) * size[1] + double(size[2]) * size[2]);
+  if (range.too_large >= range.too_small)
+    return ": the coordinates are too large for float arithmetic: the triangle areas overflow "
+           "(the mesh spans " +
+           fmt(span) + "; edges must be shorter than about 4e9)";
+  return ": the coordinates are too small for float arithmetic: the triangle areas underflow "
+         "to 0 (the mesh spans " +
+         fmt(span) + "; edges must be longer than about 1e-11)";
+}
 
 Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& scene,
                  int override_material) {
@@ -370,34 +444,47 @@ Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& s
   const ObjScan scan = scan_obj(path, text);
   if (scan.faces == 0) error_at(path, 0, 0, "no faces (an OBJ mesh needs at least one 'f' line)");
 
+  // The material libraries matter only without an override.
   const bool overridden = override_material >= 0;
-  std::map<std::string, MtlFacts> facts;
-  bool missing = false;
-  const std::string mtl_text = read_libraries(path, scan, overridden, facts, missing);
+  MtlMaterials mtl;
+  if (!overridden) {
+    for (const std::string& name : scan.material_names) mtl.try_emplace(name);
+    if (!read_libraries(path, scan, mtl)) warn_unknown_usemtl(path, scan, mtl);
+  }
 
-  // The text already read is parsed, not the file again; tinyobjloader then reads the MTL
-  // text (all libraries) at the first mtllib line, as it would the first library file.
+  // The text already read is parsed, not the file again; rt2 reads the materials itself, so
+  // tinyobjloader gets none. Polygons are kept whole, for PolygonTriangulator.
   tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
+  config.triangulate = false;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, mtl_text, config))
+  if (!reader.ParseFromString(text, "", config))
     error_at(path, 0, 0,
              "tinyobjloader: " + (reader.Error().empty() ? "cannot parse" : reader.Error()));
   // tinyobjloader's warnings are dropped: what they report is checked above, or here.
-  if (!overridden && !missing) warn_unknown_usemtl(path, scan, reader.GetMaterials());
   for (const float v : reader.GetAttrib().vertices)
     if (!std::isfinite(v)) error_at(path, 0, 0, "vertex is not finite");
 
-  FaceMaterials materials(scene, path, reader.GetMaterials(), facts, override_material);
-  Mesh mesh = assemble(path, reader, materials);
+  FaceMaterials materials(scene, path, scan, mtl, override_material);
+  Fallbacks fallbacks;
+  Mesh mesh = assemble(path, reader, scan, materials, fallbacks);
+  if (fallbacks.count > 0) {
+    warn(location(path, face_line(text, fallbacks.first_face), 0) + ": a polygon of " +
+         std::to_string(fallbacks.first_corners) +
+         " corners intersects itself or is degenerate; ear clipping gave up and its last "
+         "corners are a fan" +
+         (fallbacks.count > 1
+              ? " (" + std::to_string(fallbacks.count) + " such polygons in this file)"
+              : ""));
+  }
   const std::size_t faces = mesh.faces.size();
+  const AreaOutOfRange range = area_out_of_range(mesh);  // before the faces go
   scene.degenerate_triangles += mesh.drop_degenerate();
   if (mesh.faces.empty()) {
     error_at(path, 0, 0,
              faces == 0 ? "no faces"
-                        : "all " + std::to_string(faces) +
-                              " faces are degenerate (zero or non-finite area)");
+                        : "all " + std::to_string(faces) + " faces are degenerate" +
+                              degenerate_reason(mesh, range));
   }
   return mesh;
 }

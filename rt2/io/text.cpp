@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "rt2/error.h"
 #include "rt2/scene.h"
@@ -95,10 +97,18 @@ void validate(const std::string& file, const Scene& scene) {
 
 // ---- files ------------------------------------------------------------------------------
 
-std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context) {
-  auto fail_read = [&](const std::string& why) {
-    throw Error(
-        one_line(context.empty() ? path + ": " + why : context + " '" + path + "': " + why));
+namespace {
+
+// read_file and read_text_file: `text` adds the checks of read_text_file.
+std::string read_whole(const std::string& path, std::size_t max_bytes, const std::string& context,
+                       bool text) {
+  const auto where = [&](std::size_t line) {
+    return context.empty() ? location(path, line, 0) : context + " '" + path + "'";
+  };
+  auto fail_read = [&](const std::string& why, std::size_t line = 0) {
+    throw Error(one_line(
+        where(line) + ": " +
+        (context.empty() || line == 0 ? why : why + " (line " + std::to_string(line) + ")")));
   };
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -121,19 +131,72 @@ std::string read_file(const std::string& path, std::size_t max_bytes, const std:
   errno = 0;
   const std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
   if (!f) fail_read(std::string("cannot open: ") + std::strerror(errno));
-  std::string text;
-  text.reserve(static_cast<std::size_t>(reported));
-  char buf[1 << 16];
+  std::string out;
+  if (!text) out.reserve(static_cast<std::size_t>(reported));
+  std::vector<char> buf(std::size_t{1} << 16);
   std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) {
-    if (text.size() + n > max_bytes) too_large();
-    if (text.size() + n > reported)
+  while ((n = std::fread(buf.data(), 1, buf.size(), f.get())) > 0) {
+    if (out.size() + n > max_bytes) too_large();
+    if (out.size() + n > reported)
       fail_read("is not an ordinary file: it holds more than the " + std::to_string(reported) +
                 " bytes it reports (a /proc or /sys file, or one being written)");
-    text.append(buf, n);
+    const std::string_view chunk(buf.data(), n);
+    if (text && out.empty()) {
+      const std::string kind = not_text(chunk);
+      if (!kind.empty()) fail_read("file is " + kind);
+      out.reserve(static_cast<std::size_t>(reported));  // only now: it may be text
+    }
+    if (text) {
+      const std::size_t nul = chunk.find('\0');
+      if (nul != std::string_view::npos) {
+        const std::string_view before = chunk.substr(0, nul);
+        const std::size_t line =
+            1 + static_cast<std::size_t>(std::count(out.begin(), out.end(), '\n') +
+                                         std::count(before.begin(), before.end(), '\n'));
+        fail_read("file contains a NUL byte: it is binary or UTF-16, but it must be text", line);
+      }
+    }
+    out.append(chunk);
   }
   if (std::ferror(f.get())) fail_read(std::string("cannot read: ") + std::strerror(errno));
-  return text;
+  return out;
+}
+
+}  // namespace
+
+std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context) {
+  return read_whole(path, max_bytes, context, false);
+}
+
+std::string read_text_file(const std::string& path, std::size_t max_bytes,
+                           const std::string& context) {
+  return read_whole(path, max_bytes, context, true);
+}
+
+std::string not_text(std::string_view head) {
+  struct Signature {
+    std::string_view bytes;
+    const char* what;
+  };
+  using namespace std::string_view_literals;
+  static constexpr Signature kSignatures[] = {
+      {"\x1F\x8B"sv, "gzip-compressed; decompress it first (gunzip)"},
+      {"\xFD\x37zXZ\0"sv, "xz-compressed; decompress it first (unxz)"},
+      {"\x28\xB5\x2F\xFD"sv, "zstd-compressed; decompress it first (unzstd)"},
+      {"PK\x03\x04"sv, "a ZIP archive; extract the file from it first (unzip)"},
+      {"7z\xBC\xAF\x27\x1C"sv, "a 7-Zip archive; extract the file from it first"},
+      {"\x00\x00\xFE\xFF"sv, "UTF-32 (it starts with a UTF-32 byte-order mark); save it as UTF-8"},
+      {"\xFF\xFE\x00\x00"sv, "UTF-32 (it starts with a UTF-32 byte-order mark); save it as UTF-8"},
+      {"\xFF\xFE"sv, "UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8"},
+      {"\xFE\xFF"sv, "UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8"},
+  };
+  for (const Signature& s : kSignatures)
+    if (head.starts_with(s.bytes)) return s.what;
+  // "BZh", the block size, and the first block's magic number (a text could start "BZh").
+  if (head.size() >= 10 && head.starts_with("BZh") && head[3] >= '1' && head[3] <= '9' &&
+      head.substr(4, 6) == "1AY&SY")
+    return "bzip2-compressed; decompress it first (bunzip2)";
+  return {};
 }
 
 std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t pos) {
@@ -151,6 +214,13 @@ std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::
 }
 
 // ---- lines and tokens -------------------------------------------------------------------
+
+std::string_view after_keyword(std::string_view line) {
+  const std::size_t end = line.find_first_of(" \t");
+  if (end == std::string_view::npos) return {};
+  const std::size_t name = line.find_first_not_of(" \t", end);
+  return name == std::string_view::npos ? std::string_view() : line.substr(name);
+}
 
 std::string_view without_bom(std::string_view text) {
   return text.starts_with(kUtf8Bom) ? text.substr(kUtf8Bom.size()) : text;

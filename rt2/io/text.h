@@ -76,6 +76,19 @@ void validate(const std::string& file, const Scene& scene);
 // file names it (the message starts with that, and quotes the path).
 std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& context);
 
+// As read_file, for a file that must be text (OBJ, MTL): refused as soon as it shows it is
+// not — a compressed file or an archive, a UTF-16 or UTF-32 byte-order mark at its start, a
+// NUL byte anywhere (named with its line) — so that a 2 GB file of zeros costs one read of
+// 64 KiB, not 2 GB of memory.
+std::string read_text_file(const std::string& path, std::size_t max_bytes,
+                           const std::string& context);
+
+// What a file starting with `head` is when it is certainly not text (by its signature: gzip,
+// bzip2, xz, zstd, ZIP, 7-Zip, a UTF-16 or UTF-32 byte-order mark), as the rest of a message
+// "file is ...", e.g. "gzip-compressed; decompress it first (gunzip)"; "" when it may be
+// text.
+std::string not_text(std::string_view head);
+
 // 1-based line and column of byte `pos` in `text`. The column counts UTF-8 characters (not
 // bytes) and not a byte-order mark, as toml++ does, so that both report the same places.
 std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t pos);
@@ -98,6 +111,10 @@ void for_each_line(std::string_view text, Fn&& fn) {
     i = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
   }
 }
+
+// `line` (blanks trimmed at both ends, as for_each_line gives it) without its first token and
+// the blanks after it: the name in "usemtl Hard Wood" or "newmtl  red" ("Hard Wood", "red").
+std::string_view after_keyword(std::string_view line);
 
 // The UTF-8 byte-order mark that Windows editors write at the start of a text file.
 inline constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";

@@ -45,6 +45,7 @@ constexpr Limit kNonNegative{0.0};
 constexpr Limit kPositive{0.0, kMaxMagnitude, true};
 constexpr Limit kUnit{0.0, 1.0};
 constexpr Limit kFov{0.0, 180.0, true, true};
+constexpr Limit kIor{0.0, 100.0, true, false};  // as MTL's Ni (rt2/io/mtl.h): beyond, no glass
 
 // "a table", "an integer", ...: the type of `n`, for messages.
 std::string type_name(const toml::node& n);

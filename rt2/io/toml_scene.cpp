@@ -39,12 +39,12 @@ constexpr int kMaxKeyDepth = 256;                  // see TomlScreen
 // ---- TOML screening -----------------------------------------------------------------------
 
 // toml++ names invalid UTF-8 itself, with its position; these are the cases it reports
-// poorly: nothing at all, UTF-16 (a byte-order mark, or NUL bytes), and binary data.
+// poorly: nothing at all, UTF-16 (a byte-order mark, or NUL bytes), compressed files and
+// other binary data.
 void check_encoding(const std::string& file, std::string_view text) {
   if (text.empty()) error_at(file, 0, 0, "file is empty");
-  if (text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF"))
-    error_at(file, 0, 0,
-             "file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8");
+  const std::string kind = not_text(text);
+  if (!kind.empty()) error_at(file, 0, 0, "file is " + kind);
   const std::size_t nul = text.find('\0');
   if (nul != std::string_view::npos) {
     const auto [line, column] = line_and_column(text, nul);
@@ -440,7 +440,7 @@ Material read_material(const Reader& r) {
   m.shininess = r.number("shininess", m.shininess, kNonNegative);
   m.reflectivity = r.number("reflectivity", m.reflectivity, kUnit);
   m.transparency = r.number("transparency", m.transparency, kUnit);
-  m.ior = r.number("ior", m.ior, kPositive);
+  m.ior = r.number("ior", m.ior, kIor);
   if (r.find("checker")) {
     const Reader c = r.table("checker", {"color", "scale"});
     m.diffuse2 = c.vector("color", m.diffuse2, kNonNegative);
@@ -542,16 +542,17 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
         xf.rotate_degrees = r.vector("rotate", xf.rotate_degrees, kAny);
         xf.translate = r.vector("translate", xf.translate, kAny);
 
-        Mesh mesh = obj_to_mesh(path, read_file(path, kMaxObjBytes, r.locate("file")), scene,
+        Mesh mesh = obj_to_mesh(path, read_text_file(path, kMaxObjBytes, r.locate("file")), scene,
                                 override_material);
         apply_transform(mesh, xf);
         if (!std::all_of(mesh.positions.begin(), mesh.positions.end(),
                          [](const vec4& p) { return finite(p); }))
           r.fail_table(r.path() + ": the transform makes vertices of '" + path + "' non-finite");
+        const AreaOutOfRange range = area_out_of_range(mesh);
         scene.degenerate_triangles += mesh.drop_degenerate();  // a tiny scale can flatten faces
         if (mesh.faces.empty())
           r.fail_table(r.path() + ": every face of '" + path +
-                       "' is degenerate after the transform");
+                       "' is degenerate after the transform" + degenerate_reason(mesh, range));
         scene.meshes.push_back(std::move(mesh));
       });
 }

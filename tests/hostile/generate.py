@@ -8,6 +8,7 @@ bytes, 5000-deep nesting, 100 000 spheres, 1 MB lines); the files are committed,
 needs no Python. Run it from anywhere after changing a case: it rewrites every case file
 (and removes none; delete a dropped case's files by hand).
 """
+import gzip
 import math
 import os
 import random
@@ -197,6 +198,17 @@ def encodings():
     ok("utf8_bom_obj", "obj", "quiet: true\nfaces: 1\nmaterial: utf8_bom_obj.obj:red\n",
        obj=b"\xef\xbb\xbfmtllib utf8_bom_obj.mtl\n" + ("usemtl red\n" + TRIANGLE).encode(),
        mtl=b"\xef\xbb\xbfnewmtl red\nKd 1 0 0\n")
+    # An OBJ or MTL that is not text is refused at once, saying what it is.
+    gz = gzip.compress(TRIANGLE.encode(), mtime=0)
+    obj_error("obj_gzip", gz, "file is gzip-compressed; decompress it first")
+    obj_error("obj_zip", b"PK\x03\x04\x14\x00\x00\x00\x08\x00" + gz[10:], "file is a ZIP archive")
+    obj_error("obj_utf16_le_with_bom", b"\xff\xfe" + TRIANGLE.encode("utf-16-le"), "file is UTF-16")
+    obj_error("obj_utf16_be_with_bom", b"\xfe\xff" + TRIANGLE.encode("utf-16-be"), "file is UTF-16")
+    obj_error("obj_utf16_le_without_bom", TRIANGLE.encode("utf-16-le"),
+              "file contains a NUL byte: it is binary or UTF-16", 1)
+    error("mtl_gzip", "obj", "file is gzip-compressed", file="mtl_gzip.mtl",
+          obj="mtllib mtl_gzip.mtl\nusemtl red\n" + TRIANGLE,
+          mtl=gzip.compress(b"newmtl red\nKd 1 0 0\n", mtime=0))
     crlf = (CAMERA + RED + sphere() + mesh("crlf.obj")).replace("\n", "\r\n")
     ok("crlf", "toml", "quiet: true\nspheres: 1\nfaces: 2\nmaterial: crlf.obj:blue\n", toml=crlf,
        obj=("mtllib crlf.mtl\nusemtl blue\n" + TRIANGLE + "v 1 1 0\nf 2 4 3\n").replace(
@@ -279,6 +291,34 @@ def obj_faces():
     ok("obj_polygons_4_to_100", "obj",
        f"quiet: true\nfaces: {sum(n - 2 for n in (4, 5, 6, 7, 8, 16, 31, 64, 100))}\n",
        obj="\n".join(lines + faces) + "\n")
+    # Polygons as modellers write them (tinyobjloader filled the ring's hole, fanned the frame
+    # across its hole, split the dart outside itself, and read 300 corners as 44).
+    ring = [f"v {r * math.cos(2 * math.pi * k / 32):.6f} {r * math.sin(2 * math.pi * k / 32):.6f} 0"
+            for r in (1.0, 0.93) for k in range(32)]
+    corners = list(range(1, 33)) + [1, 33] + list(range(64, 33, -1)) + [33]
+    ok("obj_polygon_lightwave_ring", "obj", "quiet: true\nfaces: 64\ndegenerate: 0\n",
+       obj="# a ring as LightWave writes it: a bridge edge from vertex 1 to 33, walked twice\n" +
+       "\n".join(ring) + "\nf " + " ".join(map(str, corners)) + "\n")
+    ok("obj_polygon_square_frame", "obj", "quiet: true\nfaces: 8\ndegenerate: 0\n",
+       obj="v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 1 1 0\nv 1 3 0\nv 3 3 0\nv 3 1 0\n"
+       "f 1 2 3 4 1 5 6 7 8 5\n")
+    ok("obj_polygon_concave_quad", "obj", "quiet: true\nfaces: 2\ndegenerate: 0\n",
+       obj="v 0 0 0\nv 1 0.2 0\nv 2 0 0\nv 1 3 0\nf 1 2 3 4\n")
+    circle = [f"v {math.cos(2 * math.pi * k / 300):.6f} {math.sin(2 * math.pi * k / 300):.6f} 0"
+              for k in range(300)]
+    ok("obj_polygon_300_corners", "obj", "quiet: true\nfaces: 298\ndegenerate: 0\n",
+       obj="\n".join(circle) + "\nf " + " ".join(str(k + 1) for k in range(300)) + "\n")
+    # A figure eight through a repeated corner has no net area, hence no plane: the polygon
+    # is fanned (two triangles, two degenerate), with a warning.
+    ok("obj_polygon_figure_eight", "obj",
+       "warning: obj_polygon_figure_eight.obj:6: a polygon of 6 corners intersects itself or is "
+       "degenerate\nfaces: 2\ndegenerate: 2\n",
+       obj="v 0 0 0\nv 1 -1 0\nv 1 1 0\nv -1 -1 0\nv -1 1 0\nf 1 2 3 1 4 5\n")
+    # Coordinates a float area cannot hold: named, not "degenerate" alone.
+    obj_error("obj_coordinates_1e37", "v 0 0 0\nv 1e37 0 0\nv 0 1e37 0\nf 1 2 3\n",
+              "the coordinates are too large for float arithmetic")
+    obj_error("obj_coordinates_1e-30", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\n",
+              "the coordinates are too small for float arithmetic")
 
 
 # ---- TOML numbers: NaN, inf and absurd values ----------------------------------------------
@@ -314,7 +354,8 @@ def numbers():
         ("fov_0", CAMERA + "fov = 0\n", "camera.fov must be in (0, 180)", 4),
         ("fov_180", CAMERA + "fov = 180\n", "camera.fov must be in (0, 180)", 4),
         ("fov_1000", CAMERA + "fov = 1000\n", "camera.fov must be in (0, 180)", 4),
-        ("ior_0", CAMERA + "[materials.glass]\nior = 0\n", "ior must be > 0", 5),
+        ("ior_0", CAMERA + "[materials.glass]\nior = 0\n", "ior must be in (0, 100]", 5),
+        ("ior_1000", CAMERA + "[materials.glass]\nior = 1000\n", "ior must be in (0, 100]", 5),
         ("shininess_negative", CAMERA + "[materials.m]\nshininess = -1\n", "must be >= 0", 5),
         ("intensity_negative", CAMERA + "[[lights]]\nposition = [0, 5, 0]\nintensity = -1\n",
          "intensity must be >= 0", 6),
@@ -421,12 +462,49 @@ def paths():
     ok("mtl_name_unicode", "obj", "quiet: true\nmaterial: mtl_name_unicode.obj:écarlate✓\n",
        obj="mtllib mtl_name_unicode.mtl\nusemtl écarlate✓\n" + TRIANGLE,
        mtl="newmtl écarlate✓\nKd 1 0 0\n")
-    # An MTL name with a space: usemtl reads one word (as tinyobjloader does), so "my red" is
-    # not found as "my": a warning and the default material.
+    # An MTL name with a space: usemtl takes the rest of the line, as newmtl does (it read one
+    # word, as tinyobjloader does, and "my red" was not found as "my").
     ok("mtl_name_with_space", "obj",
-       "warning: material 'my' is not in the material libraries\nmaterial: default\n",
+       "quiet: true\nmaterial: mtl_name_with_space.obj:my red\n",
        obj="mtllib mtl_name_with_space.mtl\nusemtl my red\n" + TRIANGLE,
        mtl="newmtl my red\nKd 1 0 0\n")
+    ok("usemtl_name_with_spaces_and_tabs", "obj",
+       "quiet: true\ndiffuse: 0.6 0.4 0.2 usemtl_name_with_spaces_and_tabs.obj:Hard Wood\n",
+       obj="mtllib usemtl_name_with_spaces_and_tabs.mtl\nusemtl \t Hard Wood \t\n" + TRIANGLE,
+       mtl="newmtl Hard Wood\nKd 0.6 0.4 0.2\n")
+
+
+# ---- MTL values -----------------------------------------------------------------------------
+
+def mtl_values():
+    """Every MTL number is checked as an OBJ vertex is (tinyobjloader read a bad one as 0, and
+    `Kd 0.5` as dark red)."""
+    def mtl_case(name, mtl, expect):
+        case(name, f"load: {name}.obj\n{expect}",
+             obj=f"mtllib {name}.mtl\nusemtl m\n" + TRIANGLE, mtl="newmtl m\n" + mtl)
+
+    def mtl_error(name, mtl, message, line):
+        mtl_case(name, mtl, f"error: {message}\nline: {line}\nfile: {name}.mtl\n")
+
+    mtl_case("mtl_one_number_is_grey", "Ka 0.1\nKd 0.5\nKs 0.25\nNs 10\n",
+             "ok: true\nquiet: true\ndiffuse: 0.5 0.5 0.5 mtl_one_number_is_grey.obj:m\n"
+             "specular: 0.25 0.25 0.25 mtl_one_number_is_grey.obj:m\n")
+    mtl_error("mtl_ns_nan", "Kd 1 1 1\nNs nan\n", "Ns must be a finite number (got 'nan')", 3)
+    mtl_error("mtl_kd_nan", "Kd nan\n", "Kd must be a finite number (got 'nan')", 2)
+    mtl_error("mtl_kd_words", "Kd red green blue\n", "Kd must be a number (got 'red')", 2)
+    mtl_error("mtl_kd_two_numbers", "Kd 0.5 0.5\n", "Kd needs 1 or 3 numbers (got 2)", 2)
+    mtl_error("mtl_ks_1e39", "Ks 1 1e39 1\n", "Ks must be a finite number (got '1e39')", 2)
+    mtl_error("mtl_ni_inf", "Ni inf\n", "Ni must be a finite number (got 'inf')", 2)
+    mtl_error("mtl_d_word", "d opaque\n", "d must be a number (got 'opaque')", 2)
+    mtl_error("mtl_illum_word", "illum two\n", "illum must be an integer from 0 to 10", 2)
+    # 3ds Max writes Ns 0 with Ks > 0 for matte surfaces: exponent 0 is no highlight (a
+    # highlight of exponent 0 covers the whole lit side in Ks).
+    mtl_case("mtl_ns_0_with_ks", "Kd 0.5\nKs 0.9\nNs 0\n",
+             "ok: true\nquiet: true\nspecular: 0 0 0 mtl_ns_0_with_ks.obj:m\n")
+    # Textures are not supported: one warning per MTL file, however many there are.
+    mtl_case("mtl_textures", "Kd 0.5\nmap_Kd wood.png\nmap_bump -bm 2 bump.png\nbump b.png\n",
+             "ok: true\nwarning: mtl_textures.mtl:3: textures are not supported; 'map_Kd'\n"
+             "diffuse: 0.5 0.5 0.5 mtl_textures.obj:m\n")
 
 
 # ---- size ---------------------------------------------------------------------------------
@@ -440,6 +518,12 @@ def sizes():
     #   long_line_obj_comment.obj:   a 1 MiB comment, then TRIANGLE
     #   long_line_obj_vertex.obj:    "v 0 0 0" + 262 144 more coordinates, a triangle
     #   long_line_toml_key.toml:     CAMERA, then a 1 MiB key on line 4
+    #   obj_polygon_100000_corners.obj: a circle of 100 000 corners, one face (tinyobjloader
+    #                                   took 21-50 s, and lost triangles)
+    #   obj_polygon_random_20000.obj:   one face through 20 000 random points (self-intersecting)
+    #   mtl_1000000_materials.obj/.mtl: a triangle using material m999999 of a million
+    #                                   (tinyobjloader held 2.3 GB)
+    #   obj_zeros_2_gib.obj:            2 GiB of zero bytes, a sparse file (refused after 64 KiB)
     def generated(name, ext, expect):
         write(f"{name}.expect", f"load: generated/{name}.{ext}\n{expect}")
     generated("spheres_100000", "toml", "ok: true\nquiet: true\nspheres: 100000\n")
@@ -447,6 +531,13 @@ def sizes():
     generated("long_line_obj_comment", "obj", "ok: true\nquiet: true\nfaces: 1\n")
     generated("long_line_obj_vertex", "obj", "ok: true\nquiet: true\nfaces: 1\n")
     generated("long_line_toml_key", "toml", "error: unknown key\nline: 4\n")
+    generated("obj_polygon_100000_corners", "obj", "ok: true\nquiet: true\nfaces: 99998\n")
+    generated("obj_polygon_random_20000", "obj",
+              "ok: true\nwarning: a polygon of 20000 corners intersects itself or is degenerate\n")
+    generated("mtl_1000000_materials", "obj",
+              "ok: true\nquiet: true\nfaces: 1\n"
+              "diffuse: 0.5 0.5 0.5 mtl_1000000_materials.obj:m999999\n")
+    generated("obj_zeros_2_gib", "obj", "error: file contains a NUL byte\nline: 1\n")
 
 
 def main():
@@ -457,6 +548,7 @@ def main():
     encodings()
     depth()
     obj_faces()
+    mtl_values()
     numbers()
     keys()
     paths()

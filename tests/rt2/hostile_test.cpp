@@ -11,13 +11,17 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <ostream>
+#include <random>
+#include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rt2/error.h"
@@ -64,16 +68,58 @@ std::string make_generated(const std::string& file) {
     for (std::size_t i = 0; i < kMiB / 4; ++i) s += " 0.5";
     return s + "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   }
+  const auto polygon = [](std::size_t n, auto&& corner) {
+    std::string s;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto [x, y] = corner(k);
+      s += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    }
+    s += "f";
+    for (std::size_t k = 1; k <= n; ++k) s += " " + std::to_string(k);
+    return s + "\n";
+  };
+  if (file == "obj_polygon_100000_corners.obj") {
+    return polygon(100000, [](std::size_t k) {
+      const double a = 2 * 3.14159265358979 * double(k) / 100000;
+      return std::pair(std::cos(a), std::sin(a));
+    });
+  }
+  if (file == "obj_polygon_random_20000.obj") {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    return polygon(20000, [&](std::size_t) { return std::pair(u(rng), u(rng)); });
+  }
+  if (file == "mtl_1000000_materials.obj")
+    return "mtllib mtl_1000000_materials.mtl\nusemtl m999999\n" + kTriangle;
+  if (file == "mtl_1000000_materials.mtl") {
+    std::string s;
+    for (int i = 0; i < 1000000; ++i) s += "newmtl m" + std::to_string(i) + "\nKd 0.5\n";
+    return s;
+  }
   return {};
+}
+
+// Files that must not be held in memory: made in place.
+bool make_generated_in_place(const std::string& file, const std::string& path) {
+  if (file == "obj_zeros_2_gib.obj") {  // sparse, as `truncate -s 2G` makes it
+    std::ofstream(path).close();
+    fs::resize_file(path, std::uintmax_t{2} << 30);
+    return true;
+  }
+  return false;
 }
 
 std::string generated_path(const std::string& file) {
   static const test::TempDir dir("hostile");
   const std::string path = dir.path(file);
-  if (!fs::exists(path)) {
+  if (!fs::exists(path) && !make_generated_in_place(file, path)) {
     const std::string content = make_generated(file);
     if (content.empty()) return path;  // unknown: loading fails, the case says why
     dir.write(file, content);
+    // An OBJ's MTL library, if it has one.
+    const std::string mtl = fs::path(file).replace_extension(".mtl").string();
+    const std::string mtl_content = file.ends_with(".obj") ? make_generated(mtl) : "";
+    if (!mtl_content.empty()) dir.write(mtl, mtl_content);
   }
   return path;
 }
@@ -104,9 +150,9 @@ struct Expectation {
   }
 };
 
-const std::vector<std::string> kKnownKeys = {"load",  "error",   "line",      "file",
-                                             "ok",    "warning", "quiet",     "spheres",
-                                             "faces", "degenerate", "material"};
+const std::vector<std::string> kKnownKeys = {
+    "load",    "error", "line",       "file",     "ok",      "warning", "quiet",
+    "spheres", "faces", "degenerate", "material", "diffuse", "specular"};
 
 std::string trim(std::string_view s) {
   const std::size_t a = s.find_first_not_of(" \t\r");
@@ -213,6 +259,21 @@ void check_ok(const Expectation& e, const Outcome& o) {
   }
   for (const std::string& m : e.all("material"))
     EXPECT_GE(o.scene.find_material(m), 0) << "no material named '" << m << "'";
+  // "diffuse: r g b name": the material's colour.
+  for (const char* key : {"diffuse", "specular"}) {
+    for (const std::string& v : e.all(key)) {
+      std::istringstream in(v);
+      float c[3] = {};
+      std::string name;
+      in >> c[0] >> c[1] >> c[2];
+      std::getline(in >> std::ws, name);
+      const int m = o.scene.find_material(name);
+      ASSERT_GE(m, 0) << "no material named '" << name << "'";
+      const Material& mat = o.scene.materials[std::size_t(m)];
+      const vec4& got = std::string(key) == "diffuse" ? mat.diffuse : mat.specular;
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], c[i], 1e-6f) << key << " of " << name;
+    }
+  }
 }
 
 // gtest prints a failing parameter; the case name is all that helps.

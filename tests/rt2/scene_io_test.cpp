@@ -9,16 +9,24 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <sstream>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "rt2/accel.h"
 #include "rt2/error.h"
+#include "rt2/render.h"
+#include "rt2/schedule.h"
 #include "tests/rt2/temp_dir.h"
 
 #ifndef RT2_SOURCE_DIR
@@ -337,6 +345,62 @@ TEST(SceneIo, MtlKrSetsReflectivityAndOutOfRangeValuesAreClamped) {
   EXPECT_NO_THROW(s.validate());
 }
 
+// An OBJ triangle using material `name` of the MTL `mtl`; the scene it loads into.
+Scene load_with_mtl(const TempDir& dir, const std::string& mtl, const std::string& name = "m") {
+  dir.write("t.mtl", mtl);
+  Scene s;
+  load_obj(dir.write("t.obj", "mtllib t.mtl\nusemtl " + name + "\n" + kTriangleObj), s);
+  return s;
+}
+
+TEST(SceneIo, MtlColourOfOneNumberIsGrey) {
+  TempDir dir;
+  const Scene s = load_with_mtl(dir, "newmtl m\nKa 0.1\nKd 0.5\nKs 0.25\nNs 10\n");
+  const Material& m = material_named(s, "t.obj:m");
+  expect_vec(m.diffuse, 0.5f, 0.5f, 0.5f);  // not (0.5, 0, 0), dark red
+  expect_vec(m.ambient, 0.1f, 0.1f, 0.1f);
+  expect_vec(m.specular, 0.25f, 0.25f, 0.25f);
+}
+
+TEST(SceneIo, BadMtlNumbersAreErrorsNamingTheMtlLine) {
+  for (const auto& [mtl, line, text] : std::vector<std::tuple<std::string, int, std::string>>{
+           {"newmtl m\nNs nan\n", 2, "Ns must be a finite number (got 'nan')"},
+           {"newmtl m\nKd 1 1 1\nKd nan\n", 3, "Kd must be a finite number (got 'nan')"},
+           {"newmtl m\nKd red green blue\n", 2, "Kd must be a number (got 'red')"},
+       }) {
+    TempDir dir;
+    const std::string path = dir.write("t.mtl", mtl);
+    const std::string obj = dir.write("t.obj", "mtllib t.mtl\nusemtl m\n" + kTriangleObj);
+    Scene s;
+    expect_message(error_of([&] { load_obj(obj, s); }), path, line, text);
+  }
+}
+
+TEST(SceneIo, MtlShininessZeroHasNoHighlight) {
+  TempDir dir;
+  const Scene s = load_with_mtl(dir, "newmtl m\nKd 0.5\nKs 0.5\nNs 0\n");
+  expect_vec(material_named(s, "t.obj:m").specular, 0, 0, 0);
+}
+
+TEST(SceneIo, UsemtlNamesTheRestOfTheLine) {
+  TempDir dir;
+  testing::internal::CaptureStderr();
+  const Scene s = load_with_mtl(dir, "newmtl Hard Wood\nKd 0.6 0.4 0.2\n", "Hard Wood  ");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  expect_vec(material_named(s, "t.obj:Hard Wood").diffuse, 0.6f, 0.4f, 0.2f);
+}
+
+TEST(SceneIo, MtlTexturesAreOneWarningPerFile) {
+  TempDir dir;
+  testing::internal::CaptureStderr();
+  const Scene s = load_with_mtl(dir, "newmtl m\nKd 0.5\nmap_Kd wood.png\nmap_bump b.png\n");
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err, "warning: " + dir.path("t.mtl") +
+                     ":3: textures are not supported; 'map_Kd' and every other texture "
+                     "statement of this file are ignored (materials keep their colours)\n");
+  expect_vec(material_named(s, "t.obj:m").diffuse, 0.5f, 0.5f, 0.5f);
+}
+
 TEST(SceneIo, MissingMtlLibraryIsOneWarningLineNotAnError) {
   TempDir dir;
   const std::string obj = dir.write("m.obj",
@@ -388,6 +452,175 @@ TEST(SceneIo, PolygonsAreTriangulated) {
   EXPECT_EQ(s.degenerate_triangles, 0u);
 }
 
+// The area of a mesh's triangles, in double.
+double mesh_area(const Mesh& m) {
+  double sum = 0.0;
+  for (const auto& f : m.faces) {
+    const vec4 &a = m.positions[f[0]], &b = m.positions[f[1]], &c = m.positions[f[2]];
+    const double ux = double(b[0]) - a[0], uy = double(b[1]) - a[1], uz = double(b[2]) - a[2];
+    const double vx = double(c[0]) - a[0], vy = double(c[1]) - a[1], vz = double(c[2]) - a[2];
+    const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
+    sum += 0.5 * std::sqrt(x * x + y * y + z * z);
+  }
+  return sum;
+}
+
+// The OBJ text of one polygon in the plane z = 0: its corners as vertices, one face.
+std::string polygon_obj(const std::vector<std::pair<double, double>>& corners) {
+  std::string obj;
+  for (const auto& [x, y] : corners)
+    obj += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+  obj += "f";
+  for (std::size_t i = 1; i <= corners.size(); ++i) obj += " " + std::to_string(i);
+  return obj + "\n";
+}
+
+// A ring as LightWave writes it: the outer circle, a bridge edge to the inner one, the inner
+// one the other way round, and back along the bridge (the bridge's ends repeated).
+std::vector<std::pair<double, double>> bridged_ring(int n, double outer, double inner) {
+  std::vector<std::pair<double, double>> p;
+  const auto at = [](double r, int k, int count) {
+    const double a = 2 * 3.14159265358979 * k / count;
+    return std::pair(r * std::cos(a), r * std::sin(a));
+  };
+  for (int k = 0; k <= n; ++k) p.push_back(at(outer, k % n, n));
+  for (int k = n; k >= 0; --k) p.push_back(at(inner, k % n, n));
+  return p;
+}
+
+// Twice the signed area of the polygon (shoelace), and whether a point is inside it (even-odd:
+// a bridge walked twice does not count).
+double twice_area(const std::vector<std::pair<double, double>>& p) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto [x0, y0] = p[i];
+    const auto [x1, y1] = p[(i + 1) % p.size()];
+    s += x0 * y1 - x1 * y0;
+  }
+  return s;
+}
+
+bool inside(const std::vector<std::pair<double, double>>& p, double x, double y) {
+  bool in = false;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    const auto [xi, yi] = p[i];
+    const auto [xj, yj] = p[j];
+    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) in = !in;
+  }
+  return in;
+}
+
+// The mesh of the polygon covers exactly the polygon: its area, and no triangle outside (a
+// filled hole, a fan across a notch).
+void expect_covers_exactly(const Mesh& m, const std::vector<std::pair<double, double>>& p) {
+  EXPECT_NEAR(mesh_area(m), 0.5 * std::fabs(twice_area(p)), 1e-5 * std::fabs(twice_area(p)));
+  std::size_t outside = 0;
+  for (const auto& f : m.faces) {
+    double x = 0, y = 0;
+    for (const std::uint32_t i : f) {
+      x += m.positions[i][0] / 3.0;
+      y += m.positions[i][1] / 3.0;
+    }
+    outside += !inside(p, x, y);
+  }
+  EXPECT_EQ(outside, 0u);
+}
+
+TEST(SceneIo, PolygonsWithAHoleJoinedByABridgeKeepTheHole) {
+  TempDir dir;
+  // The square frame (a broken fan before) and a LightWave ring (a filled disc before).
+  const std::vector<std::pair<double, double>> frame{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0},
+                                                     {1, 1}, {1, 3}, {3, 3}, {3, 1}, {1, 1}};
+  for (const auto& p : {frame, bridged_ring(32, 1.0, 0.93), bridged_ring(500, 1.0, 0.999)}) {
+    Scene s;
+    const Mesh m = load_obj(dir.write("p.obj", polygon_obj(p)), s);
+    EXPECT_EQ(m.triangle_count(), p.size() - 2);
+    EXPECT_EQ(s.degenerate_triangles, 0u);
+    expect_covers_exactly(m, p);
+  }
+}
+
+// Debian's assimp-testmodels has the LightWave original: a ring of 66 corners in the plane
+// x = -1.146. Tested when the package is installed.
+TEST(SceneIo, TheLightWaveRingOfAssimpsTestModelsKeepsItsHole) {
+  const std::string path = "/usr/share/assimp/models/OBJ/concave_polygon.obj";
+  if (!fs::exists(path)) {
+    std::printf("[ skipped  ] %s is not installed (apt-get install assimp-testmodels)\n",
+                path.c_str());
+    return;
+  }
+  testing::internal::CaptureStderr();
+  Scene s;
+  Mesh m = load_obj(path, s);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(m.triangle_count(), 64u);
+  // In its own plane (y, z): the face's corners from the file, in order.
+  std::ifstream in(path);
+  std::vector<std::pair<double, double>> v, p;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    double x, y, z;
+    if (key == "v" && words >> x >> y >> z) v.emplace_back(y, z);
+    if (key != "f") continue;
+    for (std::string corner; words >> corner;) p.push_back(v.at(std::stoul(corner) - 1));
+  }
+  ASSERT_EQ(p.size(), 66u);
+  for (vec4& q : m.positions) q = vec4(q[1], q[2], 0.0f);
+  expect_covers_exactly(m, p);
+}
+
+TEST(SceneIo, ConcaveQuadsAreSplitThroughTheirReflexCorner) {
+  TempDir dir;
+  // A dart: the diagonal through the reflex corner (1, 0.2) is the longer one.
+  const std::vector<std::pair<double, double>> dart{{0, 0}, {1, 0.2}, {2, 0}, {1, 3}};
+  Scene s;
+  const Mesh m = load_obj(dir.write("d.obj", polygon_obj(dart)), s);
+  ASSERT_EQ(m.triangle_count(), 2u);
+  expect_covers_exactly(m, dart);
+}
+
+TEST(SceneIo, ConvexQuadsAreSplitAlongTheirShorterDiagonalAsBefore) {
+  TempDir dir;
+  Scene s;
+  const Mesh m =
+      load_obj(dir.write("q.obj", "v 0 0 0\nv 2 -1 0\nv 4 0 0\nv 2 1 0\nf 1 2 3 4\n"), s);
+  ASSERT_EQ(m.triangle_count(), 2u);
+  // Corners 2 and 4 (the short diagonal) in both triangles: (1, 2, 4) and (2, 3, 4).
+  const auto x = [&](std::size_t f, int k) { return m.positions[m.faces[f][k]][0]; };
+  EXPECT_EQ(x(0, 0), 0.0f);
+  EXPECT_EQ(x(0, 1), 2.0f);
+  EXPECT_EQ(x(0, 2), 2.0f);
+  EXPECT_EQ(x(1, 0), 2.0f);
+  EXPECT_EQ(x(1, 1), 4.0f);
+  EXPECT_EQ(x(1, 2), 2.0f);
+}
+
+// A single polygon of 100,000 corners took tinyobjloader's ear clipping 21 to 50 seconds.
+TEST(SceneIo, AHundredThousandCornerPolygonLoadsInWellUnderSeconds) {
+  TempDir dir;
+  const int n = 100000;
+  std::string obj;
+  obj.reserve(40 * n);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * 3.14159265358979 * k / n;
+    obj += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+  }
+  obj += "f";
+  for (int k = 1; k <= n; ++k) obj += " " + std::to_string(k);
+  const std::string path = dir.write("circle.obj", obj + "\n");
+  Scene s;
+  const auto start = std::chrono::steady_clock::now();
+  const Mesh m = load_obj(path, s);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ measure  ] a polygon of %d corners loads in %.3f s\n", n, seconds);
+  EXPECT_LT(seconds, 10.0);  // about 0.1 s in release; the asan build is several times slower
+  EXPECT_EQ(m.triangle_count() + s.degenerate_triangles, std::size_t(n - 2));
+  EXPECT_NEAR(mesh_area(m), 3.14159265358979, 1e-3);
+}
+
 TEST(SceneIo, NormalsAreKeptPerCornerAsUnitVectors) {
   TempDir dir;
   // Vertex 1 has two different normals: it becomes two positions.
@@ -426,13 +659,53 @@ TEST(SceneIo, FrameObjLooksAtTheMeshCentreWithOneLightAndOneGroundPlane) {
     EXPECT_LE(std::fabs(float(dot(d, s.camera.right())) / z), tan_half) << i;
     EXPECT_LE(std::fabs(float(dot(d, s.camera.up())) / z), tan_half) << i;
   }
-  // The light is above the mesh; the ground is the plane y = lo.y with a checker.
+  // The light is above the mesh; the ground is the plane y = lo.y - R / 1000 with a checker.
   EXPECT_GT(s.lights[0].position[1], box.hi[1]);
   expect_vec(s.planes[0].n, 0, 1, 0);
-  EXPECT_FLOAT_EQ(s.planes[0].d, -box.lo[1]);
+  const vec4 half = box.extent() * 0.5f;
+  const float radius = std::sqrt(float(dot(half, half)));
+  EXPECT_FLOAT_EQ(s.planes[0].d, -(box.lo[1] - 1e-3f * radius));
   EXPECT_GT(s.materials.at(s.plane_materials[0]).checker_scale, 0.0f);
   EXPECT_NE(s.find_material("tetra.obj:mirror"), -1);
   EXPECT_EQ(s.find_material("default"), -1);  // only materials that faces use are added
+}
+
+// Renders `s` (96 x 72, no recursion) with and without its ground plane: wherever the mesh is
+// seen without the plane, the plane must not change the pixel (at the mesh's lowest y it
+// z-fought with a floor in the mesh, and hid a flat mesh).
+void expect_ground_never_shows_through(const Scene& s) {
+  RenderSettings st;
+  st.width = 96;
+  st.height = 72;
+  st.depth = 0;
+  Scene bare = s;
+  bare.planes.clear();
+  bare.plane_materials.clear();
+  Image with, without;
+  const Schedule serial{Backend::serial, 1, 1};
+  const Accel a = Accel::build(s, BvhConfig{}), b = Accel::build(bare, BvhConfig{});
+  render_frame(Renderer(s, a, st), serial, with);
+  render_frame(Renderer(bare, b, st), serial, without);
+  std::size_t mesh_pixels = 0, changed = 0;
+  for (std::size_t i = 0; i < without.rgb.size(); i += 3) {
+    const bool background = without.rgb[i] == s.background[0] &&
+                            without.rgb[i + 1] == s.background[1] &&
+                            without.rgb[i + 2] == s.background[2];
+    if (background) continue;
+    ++mesh_pixels;
+    changed += with.rgb[i] != without.rgb[i] || with.rgb[i + 1] != without.rgb[i + 1] ||
+               with.rgb[i + 2] != without.rgb[i + 2];
+  }
+  EXPECT_GT(mesh_pixels, 200u);
+  EXPECT_EQ(changed, 0u) << "of " << mesh_pixels << " mesh pixels";
+}
+
+TEST(SceneIo, TheGroundOfAFramedObjNeverShowsThroughTheMesh) {
+  // The Cornell room's floor lies at its lowest y; so does all of a flat quad.
+  expect_ground_never_shows_through(frame_obj(source_file("scenes/cornell_room.obj")));
+  TempDir dir;
+  expect_ground_never_shows_through(
+      frame_obj(dir.write("flat.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 4 3 2\n")));
 }
 
 TEST(SceneIo, LoadSceneFramesABareObjAndDispatchesOnTheExtension) {
@@ -675,8 +948,8 @@ TEST(SceneIo, ValuesOutOfRangeAreErrors) {
        "materials.m.reflectivity must be in [0, 1] (got 1.5)"},
       {kCamera + "[materials.m]\ntransparency = -0.1\n", 5,
        "materials.m.transparency must be in [0, 1]"},
-      {kCamera + "[materials.m]\nior = 0\n", 5, "materials.m.ior must be > 0 (got 0)"},
-      {kCamera + "[materials.m]\nior = -1.5\n", 5, "materials.m.ior must be > 0"},
+      {kCamera + "[materials.m]\nior = 0\n", 5, "materials.m.ior must be in (0, 100] (got 0)"},
+      {kCamera + "[materials.m]\nior = -1.5\n", 5, "materials.m.ior must be in (0, 100]"},
       {kCamera + "[materials.m]\ndiffuse = [0.5, -0.5, 0]\n", 5,
        "materials.m.diffuse[1] must be >= 0"},
       {kCamera + "[materials.m]\nchecker = { scale = 0 }\n", 5,
@@ -687,6 +960,18 @@ TEST(SceneIo, ValuesOutOfRangeAreErrors) {
        "lights[0].color[0] must be >= 0"},
       {kCamera + "[world]\nambient = [0, 0, -0.2]\n", 5, "world.ambient[2] must be >= 0"},
   });
+}
+
+// MTL's Ni is bounded to 100 (rt2/io/mtl.h); a TOML ior the same (1e6 loaded before).
+TEST(SceneIo, IorAboveOneHundredIsAnError) {
+  expect_scene_errors({
+      {kCamera + "[materials.m]\nior = 100.5\n", 5,
+       "materials.m.ior must be in (0, 100] (got 100.5)"},
+      {kCamera + "[materials.m]\nior = 1e6\n", 5, "materials.m.ior must be in (0, 100]"},
+  });
+  TempDir dir;
+  EXPECT_FLOAT_EQ(material_named(load_text(dir, kCamera + "[materials.m]\nior = 100\n"), "m").ior,
+                  100.0f);
 }
 
 TEST(SceneIo, ZeroPlaneNormalIsAnError) {
@@ -839,6 +1124,18 @@ TEST(SceneIo, ObjWithoutFacesIsAnError) {
   expect_obj_error("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", 0, "degenerate");
 }
 
+TEST(SceneIo, CoordinatesTooLargeOrSmallForFloatAreasAreNamed) {
+  // Not "all faces are degenerate": the triangles are fine, a float cannot hold their areas.
+  expect_obj_error("v 0 0 0\nv 1e37 0 0\nv 0 1e37 0\nf 1 2 3\n", 0,
+                   "all 1 faces are degenerate: the coordinates are too large for float "
+                   "arithmetic: the triangle areas overflow (the mesh spans 1.4142135");
+  expect_obj_error("v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\nf 1 3 2\n", 0,
+                   "all 2 faces are degenerate: the coordinates are too small for float "
+                   "arithmetic: the triangle areas underflow to 0");
+  expect_obj_error("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", 0,
+                   "all 1 faces are degenerate (zero or non-finite area)");
+}
+
 TEST(SceneIo, TinyobjloaderErrorsAreReportedOnOneLine) {
   // tinyobjloader itself rejects index 0 in a line element.
   expect_obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 0 1\nf 1 2 3\n", 0, "tinyobjloader");
@@ -868,6 +1165,51 @@ TEST(SceneIo, BinaryObjIsAnErrorNotACrash) {
   Scene s;
   const std::string msg = error_of([&] { load_obj(path, s); });
   expect_message(msg, path, 0, "");
+}
+
+// Refused at once, saying what the file is (as TOML scenes are), not as a first bad line.
+TEST(SceneIo, CompressedUtf16OrBinaryObjIsRefusedSayingWhatItIs) {
+  const std::string gzip("\x1F\x8B\x08\x00\x00\x00\x00\x00\x00\x03+S0T0U0\xE2\x02\x00", 19);
+  const std::string utf16_le = [] {
+    std::string u("\xFF\xFE", 2);
+    for (const char c : kTriangleObj) u += std::string{c, '\0'};
+    return u;
+  }();
+  for (const auto& [bytes, line, text] : std::vector<std::tuple<std::string, int, std::string>>{
+           {gzip, 0, "file is gzip-compressed; decompress it first (gunzip)"},
+           {std::string("PK\x03\x04\x14\x00", 6), 0, "file is a ZIP archive"},
+           {utf16_le, 0,
+            "file is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8"},
+           {utf16_le.substr(2), 1, "file contains a NUL byte: it is binary or UTF-16"},
+           {kTriangleObj + "v 1 1 0\n" + std::string(1, '\0') + "\n", 6, "NUL byte"},
+       }) {
+    TempDir dir;
+    const std::string path = dir.write("m.obj", bytes);
+    Scene s;
+    expect_message(error_of([&] { load_obj(path, s); }), path, line, text);
+  }
+  // The same for an MTL library, named in the message.
+  TempDir dir;
+  const std::string mtl = dir.write("t.mtl", gzip);
+  const std::string obj = dir.write("t.obj", "mtllib t.mtl\nusemtl m\n" + kTriangleObj);
+  Scene s;
+  expect_message(error_of([&] { load_obj(obj, s); }), mtl, 0, "gzip-compressed");
+}
+
+// A sparse file made with truncate: 2 GiB of zero bytes (the limit is 4 GiB) is refused after
+// its first block, not read whole into memory first.
+TEST(SceneIo, TwoGigabytesOfZeroBytesAreRefusedAfterTheFirstBlock) {
+  TempDir dir;
+  const std::string path = dir.path("zeros.obj");
+  std::ofstream(path).close();
+  fs::resize_file(path, std::uintmax_t{2} << 30);
+  Scene s;
+  const auto start = std::chrono::steady_clock::now();
+  expect_message(error_of([&] { load_obj(path, s); }), path, 1, "file contains a NUL byte");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ measure  ] 2 GiB of zeros refused in %.4f s\n", seconds);
+  EXPECT_LT(seconds, 2.0);  // 0.0001 s in release; reading them whole takes seconds
 }
 
 TEST(SceneIo, BadKrInMtlNamesTheMtlLine) {
