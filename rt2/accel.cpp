@@ -31,6 +31,9 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
   acc.stats = bvh.stats;
   acc.tris.reserve(bvh.order.size());
   acc.tri_materials.reserve(bvh.order.size());
+  if (any_normals) acc.tri_normals.reserve(bvh.order.size());
+  // At most one partly filled block per leaf.
+  acc.blocks.reserve(bvh.order.size() / TriangleBlock::kLanes + bvh.stats.leaves);
   for (std::uint32_t k : bvh.order) {
     const Mesh& m = *sources[k].mesh;
     const auto& f = m.faces[sources[k].face];

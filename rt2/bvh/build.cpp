@@ -152,9 +152,9 @@ class Builder {
   // plane separates anything.
   std::uint32_t sah(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds, Aabb& lb,
                     Aabb& lcb, Aabb& rb, Aabb& rcb) {
-    // A node with fewer primitives than bins gets as many bins as primitives (at least 4):
-    // the planes between empty bins cost time and find nothing.
-    const int bins = std::min(config_.sah_bins, std::max(4, int(end - begin)));
+    // Bins in proportion to the primitives, 4 + n / 20 up to sah_bins (Embree's mapping):
+    // most nodes are small, and planes between nearly empty bins find little.
+    const int bins = std::min(config_.sah_bins, 4 + int((end - begin) / 20));
     const int log_block = std::countr_zero(config_.sah_block);  // a power of two
     const std::uint32_t round = config_.sah_block - 1;
     const vec4 lo = cbounds.lo, extent = cbounds.extent();

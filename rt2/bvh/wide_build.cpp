@@ -15,11 +15,22 @@ class Collapser {
             WideBvh<N>& out)
       : bvh_(bvh), tris_(tris), blocks_(blocks), out_(out) {}
 
-  // The reference for binary node b: a wide node made from it, or its leaf.
-  std::uint32_t convert(std::uint32_t b, std::uint32_t depth) {
+  // The reference for the root: a wide node made from it (nodes[0]), or its leaf.
+  std::uint32_t convert_root() {
+    if (bvh_.nodes[0].is_leaf()) return leaf(bvh_.nodes[0]);
+    out_.nodes.emplace_back();
+    fill(0, 0, 0);
+    return 0;
+  }
+
+ private:
+  // Fills wide node `index` from binary node b (inner). The node's inner children get
+  // consecutive slots, allocated before any of their subtrees, so siblings sit side by
+  // side in memory (as Embree's allocator places them): a walk that returns to a sibling
+  // finds it near the one it just left. Leaves' blocks likewise follow each other.
+  void fill(std::uint32_t index, std::uint32_t b, std::uint32_t depth) {
     out_.max_depth = std::max(out_.max_depth, depth);
     const BvhNode& node = bvh_.nodes[b];
-    if (node.is_leaf()) return leaf(node);
     // Open the largest inner child until there are N children (or only leaves).
     std::uint32_t kids[N] = {b + 1, node.offset};
     int n = 2;
@@ -40,8 +51,6 @@ class Collapser {
       kids[best] = opened + 1;
       kids[n++] = bvh_.nodes[opened].offset;
     }
-    const auto index = static_cast<std::uint32_t>(out_.nodes.size());
-    out_.nodes.emplace_back();
     WideNode<N> w;
     for (int i = 0; i < N; ++i) {
       for (int a = 0; a < 3; ++a) {
@@ -56,13 +65,18 @@ class Collapser {
         w.bounds[2 * a][i] = k.lo[a];
         w.bounds[2 * a + 1][i] = k.hi[a];
       }
-      w.child[i] = convert(kids[i], depth + 1);
+      if (k.is_leaf()) {
+        w.child[i] = leaf(k);
+      } else {
+        w.child[i] = static_cast<std::uint32_t>(out_.nodes.size());
+        out_.nodes.emplace_back();
+      }
     }
-    out_.nodes[index] = w;  // after the recursion: the vector may have moved
-    return index;
+    out_.nodes[index] = w;
+    for (int i = 0; i < n; ++i)
+      if (!(w.child[i] & kLeaf)) fill(w.child[i], kids[i], depth + 1);
   }
 
- private:
   static float area(const BvhNode& k) {
     const float x = k.hi[0] - k.lo[0], y = k.hi[1] - k.lo[1], z = k.hi[2] - k.lo[2];
     return x * y + y * z + z * x;
@@ -98,7 +112,7 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
   if (bvh.nodes.empty()) return out;
   out.nodes.reserve(bvh.nodes.size() / (N - 1) + 1);
   Collapser<N> c(bvh, triangles, blocks, out);
-  out.root = c.convert(0, 0);
+  out.root = c.convert_root();
   out.nodes.shrink_to_fit();
   return out;
 }
