@@ -69,6 +69,25 @@ MLIB_INLINE vbool4 operator&(vbool4 a, vbool4 b) { return detail::lane_mask([&](
 MLIB_INLINE vbool4 operator|(vbool4 a, vbool4 b) { return detail::lane_mask([&](int i) { return a.m[i] || b.m[i]; }); }
 MLIB_INLINE vbool4 andnot(vbool4 a, vbool4 b) { return detail::lane_mask([&](int i) { return !a.m[i] && b.m[i]; }); }
 
+// See vfloat4_sse41.h.
+namespace detail {
+MLIB_INLINE std::int32_t as_int(float f) { return std::bit_cast<std::int32_t>(f); }
+}  // namespace detail
+MLIB_INLINE vfloat4 imin(vfloat4 a, vfloat4 b) {
+  return detail::lanes([&](int i) { return detail::as_int(a.v[i]) < detail::as_int(b.v[i]) ? a.v[i] : b.v[i]; });
+}
+MLIB_INLINE vfloat4 imax(vfloat4 a, vfloat4 b) {
+  return detail::lanes([&](int i) { return detail::as_int(a.v[i]) > detail::as_int(b.v[i]) ? a.v[i] : b.v[i]; });
+}
+MLIB_INLINE vbool4 ile(vfloat4 a, vfloat4 b) {
+  return detail::lane_mask([&](int i) { return detail::as_int(a.v[i]) <= detail::as_int(b.v[i]); });
+}
+MLIB_INLINE vfloat4 flip_sign(vfloat4 a, vfloat4 s) {
+  return detail::lanes([&](int i) {
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) ^ std::bit_cast<std::uint32_t>(s.v[i]));
+  });
+}
+
 MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
   return detail::lanes([&](int i) { return m.m[i] ? if_true.v[i] : if_false.v[i]; });
 }

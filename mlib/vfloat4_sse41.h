@@ -54,6 +54,24 @@ MLIB_INLINE vbool4 operator&(vbool4 a, vbool4 b) { return {_mm_and_ps(a.m, b.m)}
 MLIB_INLINE vbool4 operator|(vbool4 a, vbool4 b) { return {_mm_or_ps(a.m, b.m)}; }
 MLIB_INLINE vbool4 andnot(vbool4 a, vbool4 b) { return {_mm_andnot_ps(a.m, b.m)}; }  // ~a & b
 
+// Minimum, maximum and <= of the lanes' bit patterns read as signed integers. For floats
+// that are not NaN this is the float order among non-negative values (+0 included) and
+// puts every negative value below every non-negative one (-0 included, as the most negative
+// integer). One cycle each, against four for minps / maxps / cmpps: the BVH's node test uses
+// them where a non-negative bound (t_min, t_max) is among the operands.
+MLIB_INLINE vfloat4 imin(vfloat4 a, vfloat4 b) {
+  return {_mm_castsi128_ps(_mm_min_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v)))};
+}
+MLIB_INLINE vfloat4 imax(vfloat4 a, vfloat4 b) {
+  return {_mm_castsi128_ps(_mm_max_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v)))};
+}
+MLIB_INLINE vbool4 ile(vfloat4 a, vfloat4 b) {
+  const __m128i gt = _mm_cmpgt_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v));
+  return {_mm_castsi128_ps(_mm_xor_si128(gt, _mm_set1_epi32(-1)))};
+}
+// a with its sign bit flipped where s's is set (s: +0 or -0 per lane).
+MLIB_INLINE vfloat4 flip_sign(vfloat4 a, vfloat4 s) { return {_mm_xor_ps(a.v, s.v)}; }
+
 // Lane i of the result is b's where m is set, else a's.
 MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
   return {_mm_blendv_ps(if_false.v, if_true.v, m.m)};

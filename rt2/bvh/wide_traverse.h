@@ -31,9 +31,19 @@
 namespace rt2::RT2_ISA {
 
 // The ray as the node test needs it, for N lanes. `Finite`: every component of 1/dir is
-// finite, so no slab distance can be NaN and the minima and maxima can be taken as a tree
-// (a shorter dependency chain, on the path from one node to the next); otherwise they are
-// taken in an order that lets a NaN distance fall away (see above).
+// finite, so no slab distance can be NaN and the test takes its short form: minima and
+// maxima as a tree of integer operations on the floats' bits (one cycle each, where minps
+// and maxps take four: this chain runs from one node to the next; Embree's trick). Integer
+// order is float order for non-negative values and ranks every negative value lowest. The
+// entry distance is a maximum that includes t_min >= 0 and the exit distance a minimum
+// that includes t_max >= 0, so a box is entered exactly when the float test says so, with
+// one exception: an exit distance of -0 (an origin exactly on a box's far plane, leaving
+// it) ranks lowest and the box is skipped, where the float test would keep it. Nothing the
+// triangle test could accept is lost: every triangle in the box lies at least the box's
+// padding (4 ulps, build.cpp) behind such an origin, the margin the padding leaves for the
+// triangle test's rounding anywhere.
+// Otherwise (a zero direction component) the float form, in an order that lets a NaN
+// distance fall away (see above).
 template <int N, bool Finite>
 struct NodeRay {
   using V = mlib::vfloat<N>;
@@ -54,23 +64,20 @@ struct NodeRay {
   }
 
   // Bit i set when child i's box is entered within [t_min, t_max_padded / pad]; its entry
-  // in `entry`. The caller pads t_max: t_max_padded = t_max * kSlabPad.
+  // in `entry`. The caller pads t_max: t_max_padded = t_max * kSlabPad (>= 0, as t_min).
   MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max_padded, V& entry) const {
     V n[3], f[3];
     for (int a = 0; a < 3; ++a) {
       n[a] = (V::load(node.bounds[near[a]]) - org[a]) * inv_near[a];
       f[a] = (V::load(node.bounds[far[a]]) - org[a]) * inv_far[a];
     }
-    V tn, tf;
     if constexpr (Finite) {
-      tn = max(max(n[0], n[1]), max(n[2], t_min));
-      tf = min(min(f[0], f[1]), min(f[2], t_max_padded));
+      entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
+      return mlib::bits(ile(entry, imin(imin(f[0], f[1]), imin(f[2], t_max_padded))));
     } else {  // NaN first: max / min then return the other operand
-      tn = max(n[2], max(n[1], max(n[0], t_min)));
-      tf = min(f[2], min(f[1], min(f[0], t_max_padded)));
+      entry = max(n[2], max(n[1], max(n[0], t_min)));
+      return mlib::bits(entry <= min(f[2], min(f[1], min(f[0], t_max_padded))));
     }
-    entry = tn;
-    return mlib::bits(tn <= tf);
   }
 };
 
