@@ -82,11 +82,6 @@ MLIB_INLINE vfloat4 imax(vfloat4 a, vfloat4 b) {
 MLIB_INLINE vbool4 ile(vfloat4 a, vfloat4 b) {
   return detail::lane_mask([&](int i) { return detail::as_int(a.v[i]) <= detail::as_int(b.v[i]); });
 }
-MLIB_INLINE vfloat4 flip_sign(vfloat4 a, vfloat4 s) {
-  return detail::lanes([&](int i) {
-    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) ^ std::bit_cast<std::uint32_t>(s.v[i]));
-  });
-}
 
 MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
   return detail::lanes([&](int i) { return m.m[i] ? if_true.v[i] : if_false.v[i]; });

@@ -69,8 +69,6 @@ MLIB_INLINE vbool4 ile(vfloat4 a, vfloat4 b) {
   const __m128i gt = _mm_cmpgt_epi32(_mm_castps_si128(a.v), _mm_castps_si128(b.v));
   return {_mm_castsi128_ps(_mm_xor_si128(gt, _mm_set1_epi32(-1)))};
 }
-// a with its sign bit flipped where s's is set (s: +0 or -0 per lane).
-MLIB_INLINE vfloat4 flip_sign(vfloat4 a, vfloat4 s) { return {_mm_xor_ps(a.v, s.v)}; }
 
 // Lane i of the result is b's where m is set, else a's.
 MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {

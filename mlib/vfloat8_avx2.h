@@ -60,7 +60,6 @@ MLIB_INLINE vbool8 ile(vfloat8 a, vfloat8 b) {
   const __m256i gt = _mm256_cmpgt_epi32(_mm256_castps_si256(a.v), _mm256_castps_si256(b.v));
   return {_mm256_castsi256_ps(_mm256_xor_si256(gt, _mm256_set1_epi32(-1)))};
 }
-MLIB_INLINE vfloat8 flip_sign(vfloat8 a, vfloat8 s) { return {_mm256_xor_ps(a.v, s.v)}; }
 
 MLIB_INLINE vfloat8 select(vbool8 m, vfloat8 if_true, vfloat8 if_false) {
   return {_mm256_blendv_ps(if_false.v, if_true.v, m.m)};
