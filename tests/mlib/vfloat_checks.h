@@ -1,0 +1,97 @@
+// tests/mlib/vfloat_checks.h — the checks of the wide SIMD types (vfloat4, vfloat8), written
+// once as a template: the vfloat4 tests run them in the baseline build, the vfloat8 ones
+// from a translation unit compiled for AVX2 (vfloat8_checks.cpp), called only on a CPU that
+// has it. They return the number of failures and describe the first in `first` (C strings
+// and snprintf only: no library template is instantiated in the AVX2 unit, where the linker
+// could pick its copy for the baseline code).
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+
+#include "mlib/vfloat.h"
+
+namespace mlib::test {
+
+inline constexpr int kFirstFailureSize = 128;
+
+template <class V>
+int check_vfloat(char (&first)[kFirstFailureSize]) {
+  constexpr int N = V::size;
+  int failures = 0;
+  first[0] = 0;
+  const auto expect = [&](bool ok, const char* what, int lane = -1) {
+    if (ok) return;
+    if (failures++ == 0) std::snprintf(first, sizeof first, "%s (lane %d)", what, lane);
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  alignas(64) float a[N], b[N], out[N];
+  for (int i = 0; i < N; ++i) {
+    a[i] = float(i) - 1.5f;  // -1.5 -0.5 0.5 1.5 ...
+    b[i] = 0.25f * float(N - i);
+  }
+  const V va = V::load(a), vb = V::load(b);
+  // Arithmetic, lane by lane and IEEE-exact.
+  (va * vb + va / vb - vb).store(out);
+  for (int i = 0; i < N; ++i)
+    expect(out[i] == a[i] * b[i] + a[i] / b[i] - b[i], "arithmetic", i);
+  // Comparisons, masks, select.
+  expect(mlib::bits(va < vb) == [&] {
+    unsigned m = 0;
+    for (int i = 0; i < N; ++i) m |= unsigned(a[i] < b[i]) << i;
+    return m;
+  }(), "bits(a < b)");
+  select(va < vb, va, vb).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == (a[i] < b[i] ? a[i] : b[i]), "select", i);
+  // NaN: ordered comparisons false, != true; min/max return the second operand.
+  alignas(64) float n[N];
+  for (int i = 0; i < N; ++i) n[i] = i % 2 ? nan : 1.0f;
+  const V vn = V::load(n);
+  expect(mlib::bits(vn <= V::broadcast(2.0f)) == [] {
+    unsigned m = 0;
+    for (int i = 0; i < N; i += 2) m |= 1u << i;
+    return m;
+  }(), "NaN fails <=");
+  expect(mlib::bits(vn != vn) == [] {
+    unsigned m = 0;
+    for (int i = 1; i < N; i += 2) m |= 1u << i;
+    return m;
+  }(), "NaN != NaN");
+  max(vn, V::broadcast(3.0f)).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == 3.0f, "max(NaN, 3) is 3");
+  // xor_sign: a * sign(s) without multiplying (-0 counts as negative).
+  xor_sign(V::broadcast(2.0f), V::broadcast(-0.0f)).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == -2.0f, "xor_sign by -0");
+  abs(va).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == std::fabs(a[i]), "abs");
+  // reduce_min puts the smallest lane everywhere.
+  reduce_min(vb).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == 0.25f, "reduce_min");
+  // Integer order of the bits: float order for non-negative values, negatives lowest,
+  // -0 the lowest of all.
+  alignas(64) float p[N], q[N];
+  for (int i = 0; i < N; ++i) {
+    p[i] = i % 3 == 0 ? -0.0f : (i % 3 == 1 ? 2.5f : -7.0f);
+    q[i] = i % 2 ? inf : 1.0f;
+  }
+  imax(V::load(p), V::load(q)).store(out);
+  for (int i = 0; i < N; ++i)
+    expect(out[i] == (p[i] > q[i] ? p[i] : q[i]) && !std::signbit(out[i]), "imax with a non-negative", i);
+  imin(V::load(p), V::broadcast(0.0f)).store(out);
+  for (int i = 0; i < N; ++i)
+    expect(std::bit_cast<std::uint32_t>(out[i]) == std::bit_cast<std::uint32_t>(p[i] == 2.5f ? 0.0f : p[i]),
+           "imin ranks negatives and -0 lowest");
+  expect(mlib::bits(ile(V::broadcast(1.0f), V::broadcast(-0.0f))) == 0, "1 <= -0 is false as integers");
+  expect(mlib::bits(ile(V::broadcast(0.5f), V::broadcast(0.75f))) == (1u << N) - 1, "0.5 <= 0.75");
+  // andnot, |, &.
+  expect(mlib::bits(andnot(va < vb, V::broadcast(0.0f) <= V::broadcast(0.0f))) ==
+             ((1u << N) - 1) - mlib::bits(va < vb),
+         "andnot");
+  return failures;
+}
+
+}  // namespace mlib::test

@@ -1,0 +1,26 @@
+// The wide SIMD types: vfloat4 (SSE4.1, or plain C++ in the scalar build) and, on a CPU with
+// AVX2, vfloat8 — arithmetic, masks, NaN rules, sign tricks and the integer order of bits
+// that the BVH's node test relies on (vfloat_checks.h).
+#include <gtest/gtest.h>
+
+#include "tests/mlib/vfloat_checks.h"
+
+namespace mlib::test {
+int check_vfloat8(char (&first)[kFirstFailureSize]);  // vfloat8_checks.cpp
+namespace {
+
+TEST(Vfloat, FourLanesFollowIeeeAndTheDocumentedMaskAndNaNRules) {
+  char first[kFirstFailureSize];
+  EXPECT_EQ(check_vfloat<vfloat4>(first), 0) << "first failure: " << first;
+}
+
+#if !defined(MLIB_SCALAR)
+TEST(Vfloat, EightLanesFollowTheSameRulesOnAnAvx2Cpu) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
+  char first[kFirstFailureSize];
+  EXPECT_EQ(check_vfloat8(first), 0) << "first failure: " << first;
+}
+#endif
+
+}  // namespace
+}  // namespace mlib::test
