@@ -93,5 +93,14 @@ const rt2::ImageCodec kCodec{can_encode, encode, decode};
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) const rt2::ImageCodec* rt2_image_codec() {
+  // One image is encoded or decoded at a time, after or before rendering: OIIO's and
+  // OpenEXR's thread pools would only add threads that outlive the work (and that a leak
+  // checker then finds half-started at exit).
+  static const bool once = [] {
+    OIIO::attribute("threads", 1);
+    OIIO::attribute("exr_threads", 1);
+    return true;
+  }();
+  (void)once;
   return &kCodec;
 }

@@ -32,7 +32,13 @@ void check_writable_image(const std::string& path) {
   io::check_output_path(path);
   const std::string ext = extension_of(path);
   if (ext.empty()) throw Error(path + ": output file needs an extension (.png, .exr, .ppm, ...)");
-  const std::string why = image_codec().can_encode(ext);
+  const ImageCodec* codec = nullptr;
+  try {
+    codec = &image_codec();
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+  const std::string why = codec->can_encode(ext);
   if (!why.empty()) throw Error(path + ": unsupported output format '" + ext + "' (" + why + ")");
 }
 
