@@ -94,6 +94,5 @@ Isa parse_isa(const std::string& name) {
   throw Error("unknown ISA '" + name + "' (this build has " + known + ")");
 }
 
-int bvh_width(Isa isa) { return isa == Isa::avx2 || isa == Isa::avx512 ? 8 : 4; }
 
 }  // namespace rt2

@@ -33,6 +33,6 @@ const char* isa_name(Isa isa);
 // build lacks, or one this CPU cannot run.
 Isa parse_isa(const std::string& name);
 // Children per BVH node for `isa`: 4 or 8.
-int bvh_width(Isa isa);
+constexpr int bvh_width(Isa isa) { return isa == Isa::avx2 || isa == Isa::avx512 ? 8 : 4; }
 
 }  // namespace rt2

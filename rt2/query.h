@@ -11,17 +11,14 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/isa.h"
 #include "rt2/bvh/traverse.h"
 #include "rt2/bvh/wide_traverse.h"
 
 namespace rt2::RT2_ISA {
 
-// The BVH width of this instruction set (bvh_width in isa.h).
-#if defined(__AVX2__)
-inline constexpr int kWidth = 8;
-#else
-inline constexpr int kWidth = 4;
-#endif
+// The BVH width of this instruction set (the enumerators are named as the namespaces).
+inline constexpr int kWidth = bvh_width(Isa::RT2_ISA);
 
 template <bool Watertight>
 using TriangleTest = std::conditional_t<Watertight, WatertightTriangleTest, FastTriangleTest>;

@@ -128,7 +128,7 @@ TEST_F(Cli, PngIsTheSrgbEncodingOfTheLinearExr) {
 TEST_F(Cli, ProgressLinesReachAFileAsTheyArePrinted) {
   // stdout is a file here; a killed run must still have left its lines in it.
   const std::string out = path("log.txt");
-  const std::string cmd = std::string(RT2CPR_BIN) +
+  const std::string cmd = std::string(rt2::test::kChildEnv) + RT2CPR_BIN +
                           " --width 320 --height 240 --subpixels 16 --frames 100000 >" + out +
                           " 2>/dev/null & echo $!";
   FILE* p = ::popen(cmd.c_str(), "r");
