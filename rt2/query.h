@@ -29,6 +29,21 @@ inline bool has_nan(const Ray& r) {
   return !(r.org == r.org) || !(r.dir == r.dir);  // vec4 == is false when any lane is NaN
 }
 
+// Calls leaf(first, count, t_max) for the leaves of the spheres' tree that the ray may hit,
+// nearest first, as bvh/traverse.h does. A tree that is a single leaf (up to
+// max_leaf_size spheres, the usual scene) is tested without the walk's set-up.
+template <bool AnyHit, class Leaf>
+MLIB_INLINE void sphere_leaves(const Accel& acc, const Ray& ray, float t_min, float& t_max,
+                               Leaf&& leaf) {
+  if (acc.spheres.empty()) return;
+  const BvhNode& root = acc.sphere_bvh.nodes[0];
+  if (root.is_leaf()) {
+    leaf(root.offset, root.count, t_max);
+    return;
+  }
+  traverse<AnyHit>(acc.sphere_bvh, RayPre(ray), t_min, t_max, leaf);
+}
+
 // The closest hit in (t_min, t_max) over planes, spheres and triangles; t = inf and
 // prim = kNoHit when there is none.
 template <bool Watertight>
@@ -49,21 +64,18 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
       h.prim = kPlaneTag | i;
     }
   }
-  if (!acc.spheres.empty()) {
-    const RayPre pre(ray);
-    float t_far = h.t;
-    traverse<false>(acc.sphere_bvh, pre, t_min, t_far,
-                    [&](std::uint32_t first, std::uint32_t count, float& t_max_) {
-                      for (std::uint32_t i = first; i < first + count; ++i) {
-                        float t;
-                        if (intersect(acc.spheres[i], ray, t_min, t_max_, t)) {
-                          t_max_ = h.t = t;
-                          h.prim = kSphereTag | i;
-                        }
-                      }
-                      return false;
-                    });
-  }
+  float t_far = h.t;
+  sphere_leaves<false>(acc, ray, t_min, t_far,
+                       [&](std::uint32_t first, std::uint32_t count, float& t_max_) {
+                         for (std::uint32_t i = first; i < first + count; ++i) {
+                           float t;
+                           if (intersect(acc.spheres[i], ray, t_min, t_max_, t)) {
+                             t_max_ = h.t = t;
+                             h.prim = kSphereTag | i;
+                           }
+                         }
+                         return false;
+                       });
   closest_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                            t_min, h, counts);
   if (!h.found()) h.t = kInfinity;
@@ -79,20 +91,17 @@ inline bool occluded(const Accel& acc, const Ray& ray, float t_min, float t_max,
     float t;
     if (intersect(p, ray, t_min, t_max, t)) return true;
   }
-  if (!acc.spheres.empty()) {
-    const RayPre pre(ray);
-    float t_far = t_max;
-    bool hit = false;
-    traverse<true>(acc.sphere_bvh, pre, t_min, t_far,
-                   [&](std::uint32_t first, std::uint32_t count, float&) {
-                     for (std::uint32_t i = first; i < first + count && !hit; ++i) {
-                       float t;
-                       hit = intersect(acc.spheres[i], ray, t_min, t_max, t);
-                     }
-                     return hit;
-                   });
-    if (hit) return true;
-  }
+  float t_far = t_max;
+  bool hit = false;
+  sphere_leaves<true>(acc, ray, t_min, t_far,
+                      [&](std::uint32_t first, std::uint32_t count, float&) {
+                        for (std::uint32_t i = first; i < first + count && !hit; ++i) {
+                          float t;
+                          hit = intersect(acc.spheres[i], ray, t_min, t_max, t);
+                        }
+                        return hit;
+                      });
+  if (hit) return true;
   return any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                               t_min, t_max, [](std::uint32_t, float) { return true; }, counts);
 }
@@ -127,24 +136,21 @@ inline float transmittance(const Accel& acc, const std::vector<Material>& materi
     if (intersect(acc.planes[i], ray, t_min, t_max, t) && crossing(acc.plane_materials[i]))
       return 0.0f;
   }
-  if (!acc.spheres.empty()) {
-    const RayPre pre(ray);
-    float t_far = t_max;
-    bool blocked = false;
-    traverse<true>(acc.sphere_bvh, pre, t_min, t_far,
-                   [&](std::uint32_t first, std::uint32_t count, float&) {
-                     for (std::uint32_t i = first; i < first + count && !blocked; ++i) {
-                       float t, t2;
-                       if (!intersect(acc.spheres[i], ray, t_min, t_max, t)) continue;
-                       blocked = crossing(acc.sphere_materials[i]);
-                       // The far side of a sphere is a second crossing.
-                       if (!blocked && intersect(acc.spheres[i], ray, t, t_max, t2))
-                         blocked = crossing(acc.sphere_materials[i]);
-                     }
-                     return blocked;
-                   });
-    if (blocked) return 0.0f;
-  }
+  float t_far = t_max;
+  bool blocked = false;
+  sphere_leaves<true>(acc, ray, t_min, t_far,
+                      [&](std::uint32_t first, std::uint32_t count, float&) {
+                        for (std::uint32_t i = first; i < first + count && !blocked; ++i) {
+                          float t, t2;
+                          if (!intersect(acc.spheres[i], ray, t_min, t_max, t)) continue;
+                          blocked = crossing(acc.sphere_materials[i]);
+                          // The far side of a sphere is a second crossing.
+                          if (!blocked && intersect(acc.spheres[i], ray, t, t_max, t2))
+                            blocked = crossing(acc.sphere_materials[i]);
+                        }
+                        return blocked;
+                      });
+  if (blocked) return 0.0f;
   const TriangleTest<Watertight> test(ray);
   if (any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, test, t_min, t_max,
                            [&](std::uint32_t prim, float) { return crossing(acc.tri_materials[prim]); },

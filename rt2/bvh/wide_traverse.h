@@ -22,6 +22,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "mlib/vfloat.h"
@@ -86,6 +87,13 @@ struct NodeRay {
 MLIB_INLINE bool finite_reciprocal(const RayPre& pre) {
   return std::isfinite(pre.inv_dir[0]) && std::isfinite(pre.inv_dir[1]) &&
          std::isfinite(pre.inv_dir[2]);
+}
+
+// The largest float below t (for t > 0; std::nextafter otherwise), without a library call.
+MLIB_INLINE float float_below(float t) {
+  if (t > 0.0f && t <= std::numeric_limits<float>::infinity())
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(t) - 1u);  // inf -> FLT_MAX
+  return std::nextafter(t, -kInfinity);
 }
 
 // A pending subtree and the distance at which the ray enters it.
@@ -231,7 +239,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
   const V t_min_v = V::broadcast(t_min), t_max_v = V::broadcast(t_max * kSlabPad);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   // Inclusive upper bound of the block test, strictly below t_max.
-  const vfloat4 t_below_4 = vfloat4::broadcast(std::nextafter(t_max, -kInfinity));
+  const vfloat4 t_below_4 = vfloat4::broadcast(float_below(t_max));
   TraversalCounts local;
   std::uint32_t stack[kStackSize<N>];
   int sp = 0;
