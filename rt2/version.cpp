@@ -2,6 +2,8 @@
 // this file only, so that a new commit recompiles nothing else.
 #include "rt2/version.h"
 
+#include <fstream>
+
 #include "rt2/isa.h"
 
 #ifndef RT2_GIT_COMMIT
@@ -34,6 +36,15 @@ const char* build_isa() {
 #else
   return "sse2";
 #endif
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      return line.substr(line.find(':') + 2);
+  return "unknown";
 }
 
 std::string version_line() {

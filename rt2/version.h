@@ -19,6 +19,9 @@ const char* compiler();
 // "scalar"); the ray kernels come in several (rt2/isa.h).
 const char* build_isa();
 
+// The CPU's model name (/proc/cpuinfo), or "unknown".
+std::string cpu_model();
+
 // "rt2 0.2.0 (commit 1234abcd, g++ 12.2.0, baseline sse4.1, ray kernels sse41 avx2 avx512,
 // this CPU runs avx512)".
 std::string version_line();

@@ -21,13 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
 
 std::string utc_now() {
   char buf[32];
@@ -97,7 +90,7 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"compiler", rt2::compiler()},
       {"baseline_isa", rt2::build_isa()},
       {"machine", host_name()},
-      {"cpu", cpu_model()},
+      {"cpu", rt2::cpu_model()},
       {"date", utc_now()},
   };
 }

@@ -106,6 +106,7 @@
 #include "rt2/offset.h"
 #include "rt2/scene_io.h"
 #include "rt2/trace.h"
+#include "rt2/version.h"
 #include "tests/bench/bench_util.h"
 #include "tests/bench/face_locator.h"
 #include "tests/bench/trace_runner.h"
@@ -342,13 +343,6 @@ Agreement compare(const RaySet& set, const Runner& a, const Runner& b, float sca
 
 // --- reporting --------------------------------------------------------------------------
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
 
 struct Stats {
   double median = 0, min = 0, max = 0;
@@ -674,7 +668,7 @@ int main(int argc, char** argv) {
   m.light = box.center() + vec4(big_r, 3.0f * big_r, 2.0f * big_r);
   m.scale = m.scene.size();
 
-  std::printf("cpu=\"%s\" hw_threads=%u\n", cpu_model().c_str(),
+  std::printf("cpu=\"%s\" hw_threads=%u\n", rt2::cpu_model().c_str(),
               std::max(1u, std::thread::hardware_concurrency()));
   std::printf("rt2_mode=%s rt2_arch=%s rt2_isa=%s rt2_width=%d chunk=%zu\n", RT2_BENCH_MODE,
               RT2_BENCH_ARCH, rt2::isa_name(o.isa), rt2::bvh_width(o.isa), o.chunk);

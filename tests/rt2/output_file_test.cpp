@@ -14,6 +14,7 @@
 
 #include "rt2/error.h"
 #include "rt2/io/output_file.h"
+#include "tests/rt2/error_of.h"
 #include "tests/rt2/small_file_system.h"
 #include "tests/rt2/temp_dir.h"
 
@@ -35,16 +36,7 @@ std::size_t entries(const fs::path& dir) {
   return n;
 }
 
-// The message of the rt2::Error `f` throws ("" if it throws none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 TEST(OutputFile, WritesTheBytesAndLeavesOnlyTheTarget) {
   const test::TempDir tmp("out_ok");

@@ -27,6 +27,7 @@
 #include "rt2/error.h"
 #include "rt2/render.h"
 #include "rt2/schedule.h"
+#include "tests/rt2/error_of.h"
 #include "tests/rt2/temp_dir.h"
 
 #ifndef RT2_SOURCE_DIR
@@ -37,6 +38,7 @@ namespace rt2 {
 namespace {
 
 namespace fs = std::filesystem;
+using test::error_of;
 
 using test::TempDir;
 
@@ -44,24 +46,6 @@ std::string source_file(const std::string& name) {
   return std::string(RT2_SOURCE_DIR) + "/" + name;
 }
 
-// The message of the rt2::Error that `f` throws; a test failure if it throws nothing or
-// anything else.
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw something other than rt2::Error: " << e.what();
-    return {};
-  } catch (...) {
-    ADD_FAILURE() << "threw something other than rt2::Error";
-    return {};
-  }
-  ADD_FAILURE() << "threw nothing";
-  return {};
-}
 
 bool contains(const std::string& s, std::string_view part) {
   return s.find(part) != std::string::npos;
