@@ -27,12 +27,14 @@ double available_bytes() {
 }  // namespace
 
 void check_image_fits(int width, int height) {
-  const double need = double(width) * double(height) * 3.0 * sizeof(float);
+  // The film (two vec4 and a count per pixel, film.h) and the image (three floats).
+  const double need = double(width) * double(height) * (2.0 * 16.0 + 4.0 + 3.0 * sizeof(float));
   const double have = available_bytes();
   if (need > have) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
-                  "a %d x %d image needs %.1f GiB of memory, but only %.1f GiB are available",
+                  "a %d x %d image needs %.1f GiB of memory (film and image), but only %.1f GiB "
+                  "are available",
                   width, height, need / 1073741824.0, have / 1073741824.0);
     throw Error(buf);
   }

@@ -6,8 +6,9 @@
 
 namespace rt2 {
 
-// Throws rt2::Error, before anything is allocated, when a width x height float image would
-// not fit in the memory available now (MemAvailable in /proc/meminfo).
+// Throws rt2::Error, before anything is allocated, when a width x height frame (its film,
+// film.h, and its image) would not fit in the memory available now (MemAvailable in
+// /proc/meminfo).
 void check_image_fits(int width, int height);
 
 struct Image {

@@ -28,7 +28,7 @@ void trace_occluded(const Accel& acc, const Ray* rays, const float* t_max, std::
 const IsaKernels& kernels() {
   static const IsaKernels table{
       Isa::RT2_ISA,  // the namespaces are named as the enumerators
-      {&render_rows_kernel<false>, &render_rows_kernel<true>},
+      {&render_tile_kernel<false>, &render_tile_kernel<true>},
       {&trace_closest<false>, &trace_closest<true>},
       {&trace_occluded<false>, &trace_occluded<true>},
   };

@@ -13,14 +13,15 @@
 namespace rt2 {
 
 struct Accel;
+class Film;
 class Renderer;
-struct Image;
 struct RayCounts;
+struct Tile;
 struct TraversalCounts;
 
 struct IsaKernels {
-  // Renders rows [y0, y1) (rt2/render.h).
-  using RenderRows = void (*)(const Renderer&, int y0, int y1, Image&, RayCounts&);
+  // Samples [s0, s1) of a tile's pixels into a film (rt2/render.h).
+  using RenderTile = void (*)(const Renderer&, const Tile&, int s0, int s1, Film&, RayCounts&);
   // hits[i] = the closest hit of rays[i] in (0, t_max[i]) (rt2/query.h).
   using TraceClosest = void (*)(const Accel&, const Ray* rays, const float* t_max,
                                 std::size_t n, Hit* hits, TraversalCounts* counts);
@@ -30,7 +31,7 @@ struct IsaKernels {
 
   Isa isa;
   // Each indexed by the triangle test: [0] the fast one, [1] the watertight one.
-  RenderRows render_rows[2];
+  RenderTile render_tile[2];
   TraceClosest trace_closest[2];
   TraceOccluded trace_occluded[2];
 };

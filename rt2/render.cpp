@@ -19,16 +19,17 @@ void RenderSettings::validate() const {
     fail("depth must be in [0, 1000000], got " + std::to_string(depth));
   if (!(min_weight >= 0.0f && min_weight <= 1.0f))
     fail("min-weight must be in [0, 1], got " + std::to_string(min_weight));
+  if (passes < 1 || passes > subpixels)
+    fail("passes must be in [1, subpixels = " + std::to_string(subpixels) + "], got " +
+         std::to_string(passes));
+  if (block < 1 || block > 256) fail("block must be in [1, 256], got " + std::to_string(block));
 }
 
-Renderer::Renderer(const Scene& scene, const Accel& accel, const RenderSettings& settings)
-    : scene_(scene), accel_(accel), settings_(settings) {
-  settings_.validate();
-  offsets_ = subpixel_offsets(settings_.subpixels, settings_.pattern);
-  scene_features_ = scene.features();
-  offset_scale_ = scene.size();
-  isa_ = accel.isa;
-  kernel_ = isa_kernels(isa_).render_rows[settings_.watertight ? 1 : 0];
+Renderer::Renderer(const CompiledScene& scene, const View& view)
+    : scene_(scene), view_(view) {
+  view_.settings.validate();
+  offsets_ = subpixel_offsets(view_.settings.subpixels, view_.settings.pattern);
+  kernel_ = isa_kernels(scene_.accel.isa).render_tile[view_.settings.watertight ? 1 : 0];
 }
 
 }  // namespace rt2

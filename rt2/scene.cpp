@@ -85,6 +85,9 @@ void check(bool ok, const std::string& what) {
 void Scene::validate() const {
   check(finite(ambient) && finite(background), "scene: ambient/background must be finite");
   check(finite(camera.position()) && finite(camera.forward()), "camera: non-finite position or direction");
+  check(material_names.size() == materials.size(), "scene: one name per material");
+  check(sphere_materials.size() == spheres.size(), "scene: one material per sphere");
+  check(plane_materials.size() == planes.size(), "scene: one material per plane");
   for (std::size_t i = 0; i < materials.size(); ++i) {
     const Material& m = materials[i];
     const std::string at = "material '" + material_names[i] + "': ";

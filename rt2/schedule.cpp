@@ -47,43 +47,74 @@ void run_omp(int threads, int portions, const std::function<void(int)>& work) {
 
 }  // namespace detail
 
-FrameResult render_frame(const Renderer& renderer, const Schedule& schedule, Image& image,
-                         const Progress& progress) {
+std::vector<Tile> make_tiles(const Schedule& schedule, int width, int height) {
   if (schedule.threads < 0 || schedule.threads > 1024)
     throw Error("threads must be in [1, 1024] (0 = all hardware threads), got " +
                 std::to_string(schedule.threads));
   if (schedule.grain < 1 || schedule.grain > 1'000'000)
     throw Error("grain must be in [1, 1000000], got " + std::to_string(schedule.grain));
-  const RenderSettings& st = renderer.settings();
-  if (image.width != st.width || image.height != st.height) {
-    check_image_fits(st.width, st.height);
-    image = Image(st.width, st.height);
+  if (schedule.tile < 0 || schedule.tile > 65535)
+    throw Error("tile must be in [1, 65535] (0 = bands of rows), got " +
+                std::to_string(schedule.tile));
+  std::vector<Tile> tiles;
+  if (schedule.tile > 0) {
+    for (int y = 0; y < height; y += schedule.tile)
+      for (int x = 0; x < width; x += schedule.tile)
+        tiles.push_back({x, y, std::min(x + schedule.tile, width), std::min(y + schedule.tile, height)});
+    return tiles;
   }
+  const long long wanted = static_cast<long long>(effective_threads(schedule)) * schedule.grain;
+  const int bands = static_cast<int>(std::min<long long>(wanted, height));
+  for (int i = 0; i < bands; ++i)
+    tiles.push_back({0, static_cast<int>(static_cast<long long>(height) * i / bands), width,
+                     static_cast<int>(static_cast<long long>(height) * (i + 1) / bands)});
+  return tiles;
+}
 
-  const int threads = effective_threads(schedule);
-  const long long wanted = static_cast<long long>(threads) * schedule.grain;
-  const int portions = static_cast<int>(std::min<long long>(wanted, st.height));
+FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film& film,
+                        int pass, const Progress& progress) {
+  const RenderSettings& st = renderer.settings();
+  const std::vector<Tile> tiles = make_tiles(schedule, st.width, st.height);
+  const int n = static_cast<int>(tiles.size());
   FrameResult result;
-  result.portions = portions;
+  result.portions = n;
   std::mutex mutex;
   int done = 0;
   auto work = [&](int i) {
-    const int y0 = static_cast<int>(static_cast<long long>(st.height) * i / portions);
-    const int y1 = static_cast<int>(static_cast<long long>(st.height) * (i + 1) / portions);
     RayCounts counts;
-    renderer.render_rows(y0, y1, image, counts);
+    renderer.render_tile(tiles[std::size_t(i)], pass, film, counts);
     const std::lock_guard<std::mutex> lock(mutex);
     result.rays += counts;
     ++done;
-    if (progress) progress(done, portions);
+    if (progress) progress(done, n);
   };
+  const int threads = effective_threads(schedule);
   const auto t0 = std::chrono::steady_clock::now();
   switch (schedule.backend) {
-    case Backend::serial: detail::run_serial(portions, work); break;
-    case Backend::omp: detail::run_omp(threads, portions, work); break;
-    case Backend::tbb: detail::run_tbb(threads, portions, work); break;
+    case Backend::serial: detail::run_serial(n, work); break;
+    case Backend::omp: detail::run_omp(threads, n, work); break;
+    case Backend::tbb: detail::run_tbb(threads, n, work); break;
   }
   result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+FrameResult render_frame(const Renderer& renderer, const Schedule& schedule, Image& image,
+                         const Progress& progress) {
+  const RenderSettings& st = renderer.settings();
+  check_image_fits(st.width, st.height);
+  Film film(st.width, st.height);
+  FrameResult result;
+  const int passes = st.passes;
+  for (int p = 0; p < passes; ++p) {
+    const FrameResult r = render_pass(renderer, schedule, film, p, [&](int done, int total) {
+      if (progress) progress(p * total + done, passes * total);
+    });
+    result.rays += r.rays;
+    result.ms += r.ms;
+    result.portions = r.portions;
+  }
+  result.nonfinite_pixels = film.resolve(image);
   return result;
 }
 

@@ -1,14 +1,17 @@
 // rt2/schedule.h — rendering a whole frame in parallel: serial, OpenMP or oneTBB.
 //
-// The frame's rows are cut into `threads x grain` portions (bands of consecutive rows,
-// sizes differing by at most one row; fewer when the image has fewer rows), and each
-// portion is one call of Renderer::render_rows. The backends are thin adapters that hand
-// portions to threads dynamically; because every pixel is computed independently, the
-// image is bit-identical whatever the backend, thread count or grain.
+// The frame is cut into tiles: by default `threads x grain` portions (bands of consecutive
+// rows, sizes differing by at most one row; fewer when the image has fewer rows: the
+// thesis's portions), or square tiles of `tile` pixels. Each tile is one call of
+// Renderer::render_tile per pass. The backends are thin adapters that hand tiles to threads
+// dynamically; because every pixel is computed independently, the image is bit-identical
+// whatever the backend, thread count, grain, tile size or number of passes.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "rt2/render.h"
 
@@ -20,6 +23,7 @@ struct Schedule {
   Backend backend = Backend::omp;
   int threads = 0;  // 0 = the number of hardware threads
   int grain = 4;    // portions of work per thread, >= 1 (thesis table 9)
+  int tile = 0;     // 0: the portions are bands of rows; N > 0: N x N tiles (1 ... 65535)
 };
 
 const char* backend_name(Backend b);
@@ -30,16 +34,25 @@ int effective_threads(const Schedule& s);
 
 struct FrameResult {
   RayCounts rays;
-  double ms = 0.0;  // wall time of the frame
-  int portions = 0;
+  double ms = 0.0;  // wall time
+  int portions = 0;  // tiles
+  std::uint64_t nonfinite_pixels = 0;  // render_frame only: see Film::resolve
 };
 
-// Called after each finished portion with (portions done, portions in all), from worker
-// threads, one call at a time.
+// The schedule's tiles for a width x height image, row by row. Throws rt2::Error for
+// threads < 0 or > 1024, grain < 1 or > 1'000'000, tile < 0 or > 65535.
+std::vector<Tile> make_tiles(const Schedule& schedule, int width, int height);
+
+// Called after each finished tile with (tiles done, tiles in all), from worker threads, one
+// call at a time.
 using Progress = std::function<void(int, int)>;
 
-// Renders the whole frame into `image` (resized to the settings' size). Throws rt2::Error
-// for threads < 0 or > 1024, grain < 1 or > 1'000'000.
+// Renders pass `pass` of every tile into `film` (which must be the settings' size).
+FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film& film,
+                        int pass, const Progress& progress = {});
+
+// Renders every pass of the frame into a fresh film and its mean into `image` (resized to
+// the settings' size); progress counts tiles over all passes.
 FrameResult render_frame(const Renderer& renderer, const Schedule& schedule, Image& image,
                          const Progress& progress = {});
 

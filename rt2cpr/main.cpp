@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rt2/builtin_scene.h"
+#include "rt2/compiled_scene.h"
 #include "rt2/error.h"
 #include "rt2/image_io.h"
 #include "rt2/io/output_file.h"
@@ -55,22 +56,42 @@ int run(const Options& o) {
   const double load_ms = ms_since(t0);
 
   t0 = Clock::now();
-  const rt2::Accel accel = rt2::Accel::build(scene, o.bvh, o.isa);
+  const rt2::CompiledScene compiled = rt2::CompiledScene::compile(scene, o.bvh, o.isa);
   const double build_ms = ms_since(t0);
-  const rt2::Renderer renderer(scene, accel, o.render);
+  const rt2::Renderer renderer(compiled, rt2::View{scene.camera, o.render});
 
-  Report report(o, scene, accel, renderer, load_ms, build_ms);
+  Report report(o, scene, compiled, renderer, load_ms, build_ms);
   if (!o.quiet) report.print_setup();
 
   rt2::Image image;
   ProgressBar bar(!o.quiet);
+  const int passes = o.render.passes;
   for (int f = 0; f < o.frames; ++f) {
     bar.start_frame(f, o.frames);
-    const rt2::FrameResult r = rt2::render_frame(
-        renderer, o.schedule, image, [&](int done, int total) { bar.update(done, total); });
+    rt2::Film film(o.render.width, o.render.height);
+    rt2::FrameResult frame;
+    const auto start = Clock::now();
+    int done = 0;
+    double last_pass_ms = 0.0;
+    for (int p = 0; p < passes; ++p) {
+      // --time-budget: the next pass only if it fits, guessing it takes as long as the last.
+      if (p > 0 && o.time_budget > 0.0 && ms_since(start) + last_pass_ms > o.time_budget * 1e3)
+        break;
+      const rt2::FrameResult r = rt2::render_pass(renderer, o.schedule, film, p, [&](int d, int n) {
+        bar.update(p * n + d, passes * n);
+      });
+      frame.rays += r.rays;
+      frame.portions = r.portions;
+      last_pass_ms = r.ms;
+      ++done;
+      if (!o.quiet && passes > 1 && o.frames == 1)
+        std::printf("pass %d of %d: %.2f ms\n", p + 1, passes, r.ms);
+    }
+    frame.ms = ms_since(start);
+    frame.nonfinite_pixels = film.resolve(image);
     bar.end_frame();
-    report.add_frame(r);
-    if (!o.quiet && o.frames > 1) std::printf("frame %d: %.2f ms\n", f + 1, r.ms);
+    report.add_frame(frame, done);
+    if (!o.quiet && o.frames > 1) std::printf("frame %d: %.2f ms\n", f + 1, frame.ms);
   }
   // A comparison that fails now still leaves the render written, then reports the failure.
   std::string compare_error;

@@ -90,7 +90,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   o.render.height = 600;
   o.render.depth = 4;
   int width = o.render.width, height = o.render.height, subpixels = o.render.subpixels,
-      depth = o.render.depth, lights = -1, threads = o.schedule.threads, grain = o.schedule.grain;
+      depth = o.render.depth, lights = -1, threads = o.schedule.threads, grain = o.schedule.grain,
+      passes = o.render.passes, tile = o.schedule.tile, block = o.render.block;
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
@@ -121,6 +122,14 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--triangle-test", triangle_test,
                  "fast (the thesis's) | watertight (Woop et al. 2013)");
   app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
+  app.add_option("--passes", passes, "render each pixel's samples in this many passes over the "
+                                     "image, 1 ... subpixels (progressive)");
+  app.add_option("--time-budget", o.time_budget,
+                 "seconds per frame: stop after the last pass that fits (0 = all passes)");
+  app.add_option("--tile", tile, "square tiles of N pixels handed to threads (0 = threads x "
+                                 "grain bands of rows)");
+  app.add_option("--block", block, "pixels per side of the blocks a tile is traced in, one "
+                                   "batch of rays each (1 ... 256)");
   app.add_option("--output", o.output,
                  "image file: .png .jpg .ppm (sRGB, 8-bit) or .exr .hdr .tif (linear float)")
       ->default_str("none");
@@ -164,6 +173,11 @@ std::optional<Options> parse_options(int argc, char** argv) {
   if (given("--subpixels")) o.render.subpixels = subpixels;
   if (given("--depth")) o.render.depth = depth;
   if (given("--lights")) o.lights = lights;
+  o.render.passes = passes;
+  o.render.block = block;
+  o.schedule.tile = tile;
+  if (!(o.time_budget >= 0.0 && o.time_budget <= 1e9))
+    throw rt2::Error("time-budget must be in [0, 1e9] seconds, got " + std::to_string(o.time_budget));
   o.render.min_weight = min_weight;
   o.render.pattern = rt2::parse_pattern(pattern);
   o.isa = rt2::parse_isa(isa);
@@ -187,6 +201,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   if (grain < 1 || grain > 1'000'000)
     throw rt2::Error("grain must be in [1, 1000000], got " + std::to_string(grain));
   o.schedule.grain = grain;
+  if (tile < 0 || tile > 65535)
+    throw rt2::Error("tile must be in [1, 65535] (0 = bands of rows), got " + std::to_string(tile));
   if (o.frames < 1 || o.frames > 1'000'000)
     throw rt2::Error("frames must be in [1, 1000000], got " + std::to_string(o.frames));
   if (given("--lights") && (o.lights < 0 || o.lights > 1'000'000))

@@ -22,6 +22,7 @@ struct Options {
   bool no_bvh = false;  // one leaf holding every primitive (brute force)
   rt2::Schedule schedule;
   int frames = 1;
+  double time_budget = 0.0;  // seconds per frame for its passes; 0: every pass
   std::string output;  // image file; empty: not written
   std::string stats;   // JSON file; empty: not written
   std::string reference;  // reference image to compare against; empty: none

@@ -50,9 +50,10 @@ std::string host_name() {
 
 }  // namespace
 
-Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& accel,
+Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledScene& compiled,
                const rt2::Renderer& renderer, double load_ms, double build_ms) {
   const rt2::RenderSettings& st = renderer.settings();
+  const rt2::Accel& accel = compiled.accel;
   const rt2::BvhStats& b = accel.stats;
   j_ = {
       {"scene", o.scene.empty() ? "built-in" : o.scene},
@@ -63,7 +64,7 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"pattern", rt2::pattern_name(st.pattern)},
       {"depth", st.depth},
       {"min_weight", json_float(st.min_weight)},
-      {"lights", scene.lights.size()},
+      {"lights", compiled.lights.size()},
       {"leaf_size", o.bvh.max_leaf_size},
       {"split", o.bvh.split == rt2::Split::sah ? "sah" : "midpoint"},
       {"bvh", !o.no_bvh},
@@ -73,7 +74,11 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
       {"frames", o.frames},
       {"isa", rt2::isa_name(renderer.isa())},
       {"triangle_test", st.watertight ? "watertight" : "fast"},
-      {"features", rt2::feature_names(renderer.scene_features())},
+      {"features", rt2::feature_names(compiled.features)},
+      {"passes", st.passes},
+      {"block", st.block},
+      {"tile", o.schedule.tile},
+      {"time_budget_s", o.time_budget},
       {"triangles", accel.tris.size()},
       {"spheres", accel.spheres.size()},
       {"planes", accel.planes.size()},
@@ -95,7 +100,9 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& acce
   };
 }
 
-void Report::add_frame(const rt2::FrameResult& r) {
+void Report::add_frame(const rt2::FrameResult& r, int passes) {
+  passes_ = passes;
+  nonfinite_ = r.nonfinite_pixels;
   frame_ms_.push_back(r.ms);
   rays_ = r.rays;  // identical every frame
 }
@@ -152,9 +159,20 @@ void Report::print_summary() const {
               static_cast<unsigned long long>(rays_.shadow),
               static_cast<unsigned long long>(rays_.reflection),
               static_cast<unsigned long long>(rays_.refraction), j["mrays_per_s"].get<double>());
-  if (rays_.nonfinite_pixels > 0)
+  const auto per_ray = [](const rt2::TraversalCounts& w, std::uint64_t rays) {
+    return rays ? std::pair{double(w.nodes) / double(rays), 4.0 * double(w.blocks) / double(rays)}
+                : std::pair{0.0, 0.0};
+  };
+  const auto [pn, pt] = per_ray(rays_.primary_walk, rays_.primary);
+  const auto [sn, st] = per_ray(rays_.shadow_walk, rays_.shadow);
+  const auto [rn, rtr] = per_ray(rays_.secondary_walk, rays_.reflection + rays_.refraction);
+  std::printf("BVH nodes / triangles tested per ray: primary %.2f / %.2f, shadow %.2f / %.2f, "
+              "secondary %.2f / %.2f\n", pn, pt, sn, st, rn, rtr);
+  if (passes_ < j["passes"].get<int>())
+    std::printf("time budget: %d of %d passes rendered\n", passes_, j["passes"].get<int>());
+  if (nonfinite_ > 0)
     std::printf("warning: %llu pixels came out NaN or infinite and were written as black\n",
-                static_cast<unsigned long long>(rays_.nonfinite_pixels));
+                static_cast<unsigned long long>(nonfinite_));
   if (j.contains("reference")) {
     const auto& r = j["reference"];
     std::printf("against reference: RMSE %.6f, PSNR %s dB, SSIM %.5f, edge RMSE %.6f over %zu "
@@ -180,7 +198,14 @@ nlohmann::json Report::json() const {
   j["rays_reflection"] = rays_.reflection;
   j["rays_refraction"] = rays_.refraction;
   j["rays_total"] = rays_.total();
-  j["nonfinite_pixels"] = rays_.nonfinite_pixels;
+  j["nonfinite_pixels"] = nonfinite_;
+  j["passes_rendered"] = passes_;
+  const auto walk = [](const rt2::TraversalCounts& w) {
+    return nlohmann::json{{"nodes", w.nodes}, {"triangles", 4 * w.blocks}};
+  };
+  j["bvh_walks"] = {{"primary", walk(rays_.primary_walk)},
+                    {"shadow", walk(rays_.shadow_walk)},
+                    {"secondary", walk(rays_.secondary_walk)}};
   j["mrays_per_s"] = med > 0 ? double(rays_.total()) / (med * 1e3) : 0.0;
   return j;
 }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rt2/accel.h"
+#include "rt2/compiled_scene.h"
 #include "rt2/image.h"
 #include "rt2/render.h"
 #include "rt2/schedule.h"
@@ -17,9 +17,10 @@ namespace rt2cpr {
 
 class Report {
  public:
-  Report(const Options& o, const rt2::Scene& scene, const rt2::Accel& accel,
+  Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledScene& compiled,
          const rt2::Renderer& renderer, double load_ms, double build_ms);
-  void add_frame(const rt2::FrameResult& r);
+  // A frame, and how many of its passes were rendered (fewer under --time-budget).
+  void add_frame(const rt2::FrameResult& r, int passes);
   // Image error of the last frame against a reference of the same size (RMSE, PSNR, SSIM).
   void compare(const rt2::Image& image, const rt2::Image& reference);
   void print_setup() const;
@@ -31,6 +32,8 @@ class Report {
   nlohmann::json j_;
   std::vector<double> frame_ms_;
   rt2::RayCounts rays_;
+  int passes_ = 0;
+  std::uint64_t nonfinite_ = 0;
 };
 
 }  // namespace rt2cpr

@@ -124,7 +124,7 @@ MLIB_INLINE void prefetch_ref(const WideBvh<N>& bvh, const TriangleBlock* blocks
 // The closest triangle hit by `ray` in (t_min, h.t), updating h (t, u, v and prim = the
 // triangle's index) when one is found; ties at equal t go to the smaller index. `test` is
 // a FastTriangleTest or a WatertightTriangleTest built from `ray`.
-template <int N, class Test, bool Count, bool Finite>
+template <int N, class Test, bool Finite>
 inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                   const Ray& ray, const RayPre& pre, const Test& test,
                                   float t_min, Hit& result, TraversalCounts* counts) {
@@ -141,7 +141,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
   for (;;) {
     // Down through inner nodes, nearest child first.
     while (!(ref & kLeaf)) {
-      if constexpr (Count) ++local.nodes;
+      ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
       unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t * kSlabPad), entry);
@@ -185,7 +185,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
     }
     // A leaf: its blocks, until the one marked last.
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-      if constexpr (Count) ++local.blocks;
+      ++local.blocks;
       const NearestHit n = test.nearest(*b, t_min_4, vfloat4::broadcast(h.t));
       if (n.lane >= 0) {
         const std::uint32_t prim = b->prim_of(n.lane);
@@ -202,7 +202,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
     for (;;) {  // the next pending subtree that can still hold a closer hit (or a tie)
       if (sp == 0) {
         result = h;
-        if constexpr (Count) *counts += local;
+        if (counts) *counts += local;
         return;
       }
       const StackEntry e = stack[--sp];
@@ -220,17 +220,15 @@ MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
                                   TraversalCounts* counts) {
   if (bvh.root == kNoChild) return;
   const RayPre pre(ray);
-  if (counts)
-    closest_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
-  else if (finite_reciprocal(pre))
-    closest_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
+  if (finite_reciprocal(pre))
+    closest_triangle_walk<N, Test, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
   else
-    closest_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
+    closest_triangle_walk<N, Test, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
 }
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
 // order, until it returns true; returns whether it did.
-template <int N, class Test, bool Count, bool Finite, class OnHit>
+template <int N, class Test, bool Finite, class OnHit>
 inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
                               const RayPre& pre, const Test& test, float t_min, float t_max,
                               OnHit&& on_hit, TraversalCounts* counts) {
@@ -247,7 +245,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
   bool stopped = false;
   for (;;) {
     while (!(ref & kLeaf)) {
-      if constexpr (Count) ++local.nodes;
+      ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
       unsigned mask = nr.test(node, t_min_v, t_max_v, entry);
@@ -260,7 +258,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
       }
     }
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-      if constexpr (Count) ++local.blocks;
+      ++local.blocks;
       const BlockHits bh = test(*b, t_min_4, t_below_4);
       for (unsigned m = bh.mask; m; m &= m - 1) {
         const int l = std::countr_zero(m);
@@ -276,7 +274,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
     ref = stack[--sp];
   }
 done:
-  if constexpr (Count) *counts += local;
+  if (counts) *counts += local;
   return stopped;
 }
 
@@ -286,14 +284,11 @@ MLIB_INLINE bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks
                               TraversalCounts* counts) {
   if (bvh.root == kNoChild) return false;
   const RayPre pre(ray);
-  if (counts)
-    return any_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                   on_hit, counts);
   if (finite_reciprocal(pre))
-    return any_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                   on_hit, counts);
-  return any_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                  on_hit, counts);
+    return any_triangle_walk<N, Test, true>(bvh, blocks, ray, pre, test, t_min, t_max, on_hit,
+                                            counts);
+  return any_triangle_walk<N, Test, false>(bvh, blocks, ray, pre, test, t_min, t_max, on_hit,
+                                           counts);
 }
 
 }  // namespace rt2::RT2_ISA

@@ -3,6 +3,7 @@
 // thesis's size, both objects are perfect mirrors, it needs exactly the expected render
 // features, and the camera frames it.
 #include "rt2/builtin_scene.h"
+#include "rt2/error.h"
 
 #include <gtest/gtest.h>
 
@@ -32,6 +33,20 @@ std::pair<float, float> project(const Camera& c, const vec4& p, float aspect) {
 }
 
 TEST(BuiltinScene, Validates) { EXPECT_NO_THROW(scene().validate()); }
+
+// A scene built in code may leave the per-primitive material arrays short: validate must
+// say so rather than read past them.
+TEST(BuiltinScene, ValidateRefusesMaterialArraysShorterThanTheirPrimitives) {
+  Scene s = scene();
+  s.sphere_materials.clear();
+  EXPECT_THROW(s.validate(), Error);
+  s = scene();
+  s.plane_materials.clear();
+  EXPECT_THROW(s.validate(), Error);
+  s = scene();
+  s.material_names.pop_back();
+  EXPECT_THROW(s.validate(), Error);
+}
 
 TEST(BuiltinScene, HasOneSphereOnePlaneAndOneLight) {
   const Scene& s = scene();

@@ -306,7 +306,9 @@ TEST(Bvh, ALeafsBlocksHoldConsecutiveTrianglesAndTheirExactVertices) {
   for (const TriangleBlock& b : acc.blocks) {
     for (int l = 0; l < 4; ++l) {
       if (b.prim_of(l) == TriangleBlock::kNoPrim) continue;
-      if (!leaf_start || l > 0) EXPECT_EQ(b.prim_of(l), next);  // triangles in leaf order
+      if (!leaf_start || l > 0) {
+        EXPECT_EQ(b.prim_of(l), next);  // triangles in leaf order
+      }
       next = b.prim_of(l) + 1;
       for (int a = 0; a < 3; ++a) {
         EXPECT_EQ(b.v0[a][l], acc.tris[b.prim_of(l)].v0[a]);

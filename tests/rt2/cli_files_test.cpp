@@ -88,7 +88,9 @@ TEST_F(Cli, ABadReferenceFailsBeforeTheFirstFrame) {
         {path("fifo.exr"), std::string("not a regular file")},
         {path("small.exr"), std::string("reference image is 8x8, the render is 24x16")}}) {
     if (ref == path("text.exr")) write("text.exr", "not an image\n");
-    if (ref == path("fifo.exr")) ASSERT_EQ(::mkfifo(ref.c_str(), 0600), 0);
+    if (ref == path("fifo.exr")) {
+      ASSERT_EQ(::mkfifo(ref.c_str(), 0600), 0);
+    }
     if (ref == path("small.exr")) {
       ASSERT_EQ(run("--width 8 --height 8 --quiet --output " + ref).status, 0);
     }

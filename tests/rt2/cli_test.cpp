@@ -134,6 +134,38 @@ TEST_F(Cli, ReferenceComparisonIsPrintedAndWrittenToStats) {
   expect_clean_failure(run("--width 10 --height 10 --quiet --reference " + path("ref.exr")), "reference image is 24x16");
 }
 
+TEST_F(Cli, PassesTilesAndBlocksGiveTheImageOfOnePass) {
+  const std::string base = std::string(kTiny) + " --subpixels 4 --depth 6 ";
+  ASSERT_EQ(run(base + "--output " + path("one.exr")).status, 0);
+  ASSERT_EQ(run(base + "--passes 4 --tile 5 --block 3 --output " + path("four.exr")).status, 0);
+  EXPECT_EQ(rt2::read_image(path("one.exr")).rgb, rt2::read_image(path("four.exr")).rgb);
+  expect_clean_failure(run(base + "--passes 5"), "passes must be in [1, subpixels = 4]");
+  expect_clean_failure(run(base + "--tile -1"), "tile");
+  expect_clean_failure(run(base + "--block 0"), "block");
+  expect_clean_failure(run(base + "--time-budget -1"), "time-budget");
+}
+
+TEST_F(Cli, ATimeBudgetStopsAfterTheLastPassThatFitsAndStillWritesTheImage) {
+  const Outcome r = run("--width 64 --height 48 --quiet --subpixels 16 --passes 16 "
+                        "--time-budget 0.000001 --output " + path("quick.png") + " --stats " +
+                        path("s.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["passes"], 16);
+  EXPECT_EQ(j["passes_rendered"], 1);  // the first pass always runs
+  EXPECT_EQ(j["rays_primary"], 64 * 48);
+  EXPECT_EQ(rt2::read_image(path("quick.png")).width, 64);
+}
+
+TEST_F(Cli, StatsCountTheBvhWalkOfEachKindOfRay) {
+  ASSERT_EQ(run(std::string(kTiny) + " --stats " + path("s.json")).status, 0);
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  for (const char* kind : {"primary", "shadow", "secondary"}) {
+    ASSERT_TRUE(j["bvh_walks"].contains(kind)) << kind;
+    EXPECT_GT(j["bvh_walks"][kind]["nodes"].get<std::uint64_t>(), 0u) << kind;
+  }
+}
+
 TEST_F(Cli, AnObjAloneIsFramedAndRendered) {
   write("tri.obj", "v -1 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0.5 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
   const Outcome r = run(std::string(kTiny) + " --scene " + path("tri.obj") + " --output " + path("t.png"));

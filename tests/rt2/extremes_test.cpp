@@ -23,11 +23,10 @@ struct Frame {
 };
 
 Frame render(const Scene& scene, const RenderSettings& st, Schedule sched = {Backend::omp, 0, 4}) {
-  const Accel acc = Accel::build(scene, BvhConfig{});
-  const Renderer r(scene, acc, st);
   Frame f;
-  f.rays = render_frame(r, sched, f.image).rays;
-  EXPECT_EQ(f.rays.nonfinite_pixels, 0u);  // no NaN or infinity reaches a pixel
+  FrameResult fr;
+  f.image = test::render_scene(scene, st, sched, BvhConfig{}, best_isa(), &fr);
+  f.rays = fr.rays;
   return f;
 }
 

@@ -58,7 +58,9 @@ TEST(ImageIo, EveryFormatRoundTripsWithinItsPrecision) {
         ASSERT_NEAR(srgb_encode(back.rgb[i]), srgb_encode(img.rgb[i]), 0.5f / 255.0f + 1e-6f) << ext;
       }
     }
-    if (e == ".jpg") EXPECT_GT(compare_images(back, img).psnr, 30.0);
+    if (e == ".jpg") {
+      EXPECT_GT(compare_images(back, img).psnr, 30.0);
+    }
   }
   // No temporary files remain.
   std::size_t files = 0;
@@ -166,7 +168,7 @@ TEST(ImageIo, ErrorsAreOneLine) {
 TEST(ImageIo, ReadingRefusesDevicesPipesDirectoriesAndNonImages) {
   const test::TempDir tmp("image_io_read");
   ASSERT_EQ(::mkfifo(tmp.path("fifo.png").c_str(), 0600), 0);
-  for (const std::string p : {std::string("/dev/zero"), tmp.path("fifo.png")}) {
+  for (const std::string& p : {std::string("/dev/zero"), tmp.path("fifo.png")}) {
     try {
       read_image(p);  // would never end if it were opened
       ADD_FAILURE() << p;

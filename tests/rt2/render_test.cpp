@@ -33,11 +33,8 @@ Scene everything_scene() {
 
 Image render(const Scene& scene, const RenderSettings& st, const Schedule& sched,
              RayCounts* rays = nullptr, BvhConfig bvh = {}, Isa isa = best_isa()) {
-  const Accel acc = Accel::build(scene, bvh, isa);
-  const Renderer r(scene, acc, st);
-  Image img;
-  const FrameResult fr = render_frame(r, sched, img);
-  EXPECT_EQ(fr.rays.nonfinite_pixels, 0u);  // no NaN or infinity reaches a pixel
+  FrameResult fr;
+  const Image img = test::render_scene(scene, st, sched, bvh, isa, &fr);
   if (rays) *rays = fr.rays;
   return img;
 }
@@ -91,15 +88,15 @@ TEST(Render, EveryInstructionSetGivesIdenticalImages) {
     }
 }
 
-TEST(Render, RowsRenderWithDenormalsFlushedAndTheCallersModeComesBack) {
+TEST(Render, TilesRenderWithDenormalsFlushedAndTheCallersModeComesBack) {
   const Scene s = make_default_scene();
-  const Accel acc = Accel::build(s, BvhConfig{});
-  const Renderer r(s, acc, small());
-  Image img(small().width, small().height);
+  const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
+  const Renderer r(c, View{s.camera, small()});
+  Film film(small().width, small().height);
   RayCounts counts;
   for (bool mode : {false, true}) {
     mlib::set_flush_denormals(mode);
-    r.render_rows(0, 4, img, counts);
+    r.render_tile(Tile{0, 0, small().width, 4}, 0, film, counts);
     EXPECT_EQ(mlib::flush_denormals(), mode);
   }
   mlib::set_flush_denormals(false);
@@ -165,8 +162,8 @@ TEST(Render, MoreSubpixelsChangeEdgesOnly) {
 
 TEST(Render, ScheduleRejectsAbsurdThreadsAndGrain) {
   const Scene s = make_default_scene();
-  const Accel acc = Accel::build(s, BvhConfig{});
-  const Renderer r(s, acc, small());
+  const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
+  const Renderer r(c, View{s.camera, small()});
   Image img;
   EXPECT_THROW(render_frame(r, Schedule{Backend::omp, -1, 1}, img), Error);
   EXPECT_THROW(render_frame(r, Schedule{Backend::omp, 2, 0}, img), Error);

@@ -28,6 +28,7 @@
 #include "rt2/render.h"
 #include "rt2/schedule.h"
 #include "tests/rt2/error_of.h"
+#include "tests/rt2/test_util.h"
 #include "tests/rt2/temp_dir.h"
 
 #ifndef RT2_SOURCE_DIR
@@ -665,11 +666,7 @@ void expect_ground_never_shows_through(const Scene& s) {
   Scene bare = s;
   bare.planes.clear();
   bare.plane_materials.clear();
-  Image with, without;
-  const Schedule serial{Backend::serial, 1, 1};
-  const Accel a = Accel::build(s, BvhConfig{}), b = Accel::build(bare, BvhConfig{});
-  render_frame(Renderer(s, a, st), serial, with);
-  render_frame(Renderer(bare, b, st), serial, without);
+  const Image with = test::render_scene(s, st), without = test::render_scene(bare, st);
   std::size_t mesh_pixels = 0, changed = 0;
   for (std::size_t i = 0; i < without.rgb.size(); i += 3) {
     const bool background = without.rgb[i] == s.background[0] &&

@@ -7,6 +7,7 @@
 
 #include "rt2/schedule.h"
 #include "rt2/optics.h"
+#include "tests/rt2/test_util.h"
 
 namespace rt2 {
 namespace {
@@ -41,15 +42,13 @@ struct Pixel {
 };
 
 Pixel render_pixel(const Scene& s, int depth = 4, float min_weight = 0.0f) {
-  const Accel acc = Accel::build(s, BvhConfig{});
   RenderSettings st;
   st.width = st.height = 1;
   st.depth = depth;
   st.min_weight = min_weight;
-  const Renderer r(s, acc, st);
-  Image img;
-  const FrameResult fr = render_frame(r, Schedule{Backend::serial, 1, 1}, img);
-  EXPECT_EQ(fr.rays.nonfinite_pixels, 0u);  // no NaN or infinity reaches a pixel
+  FrameResult fr;
+  const Image img = test::render_scene(s, st, Schedule{Backend::serial, 1, 1}, BvhConfig{},
+                                       best_isa(), &fr);
   return {vec4(img.rgb[0], img.rgb[1], img.rgb[2]), fr.rays};
 }
 

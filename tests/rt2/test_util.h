@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/compiled_scene.h"
 #include "rt2/isa.h"
+#include "rt2/schedule.h"
 #include "rt2/scene.h"
 
 namespace rt2::test {
@@ -128,6 +130,21 @@ inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max,
   }
   if (!h.found()) h.t = kInfinity;
   return h;
+}
+
+// Renders `scene` through the whole pipeline (compile, the scene's camera, the schedule's
+// tiles, every pass, the film's mean) and checks that no pixel came out NaN or infinite.
+inline Image render_scene(const Scene& scene, const RenderSettings& settings,
+                          const Schedule& schedule = {Backend::serial, 1, 1},
+                          const BvhConfig& bvh = {}, Isa isa = best_isa(),
+                          FrameResult* result = nullptr) {
+  const CompiledScene compiled = CompiledScene::compile(scene, bvh, isa);
+  const Renderer r(compiled, View{scene.camera, settings});
+  Image image;
+  const FrameResult fr = render_frame(r, schedule, image);
+  EXPECT_EQ(fr.nonfinite_pixels, 0u);  // no NaN or infinity reaches a pixel
+  if (result) *result = fr;
+  return image;
 }
 
 }  // namespace rt2::test
