@@ -1,6 +1,7 @@
 // rt2/film.cpp — a film's storage and its mean (see film.h).
 #include "rt2/film.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rt2 {
@@ -8,6 +9,12 @@ namespace rt2 {
 Film::Film(int width, int height)
     : width_(width), height_(height), sum_(std::size_t(width) * std::size_t(height)),
       carry_(sum_.size()), samples_(sum_.size(), 0) {}
+
+void Film::clear() {
+  std::fill(sum_.begin(), sum_.end(), vec4());
+  std::fill(carry_.begin(), carry_.end(), vec4());
+  std::fill(samples_.begin(), samples_.end(), 0u);
+}
 
 std::uint64_t Film::resolve(Image& image) const {
   if (image.width != width_ || image.height != height_) image = Image(width_, height_);

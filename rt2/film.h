@@ -22,6 +22,9 @@ class Film {
   // A film of width x height pixels holding no sample (check_image_fits first).
   Film(int width, int height);
 
+  // Drops every sample (keeps the memory, for the next frame).
+  void clear();
+
   int width() const { return width_; }
   int height() const { return height_; }
   // Samples pixel (x, y) holds.

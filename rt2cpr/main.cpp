@@ -64,11 +64,12 @@ int run(const Options& o) {
   if (!o.quiet) report.print_setup();
 
   rt2::Image image;
+  rt2::Film film(o.render.width, o.render.height);
   ProgressBar bar(!o.quiet);
   const int passes = o.render.passes;
   for (int f = 0; f < o.frames; ++f) {
     bar.start_frame(f, o.frames);
-    rt2::Film film(o.render.width, o.render.height);
+    if (f > 0) film.clear();
     rt2::FrameResult frame;
     const auto start = Clock::now();
     int done = 0;
