@@ -43,7 +43,9 @@ std::size_t compare_with_brute_force(const Scene& scene, const BvhConfig& config
         const Hit ref = test::brute_force(acc, r, 0.0f, kInfinity, watertight);
         EXPECT_EQ(bvh.found(), ref.found())
             << str(r.org) << " " << str(r.dir) << " " << isa_name(isa) << " " << watertight;
-        if (bvh.found() && ref.found()) EXPECT_EQ(bvh.t, ref.t);
+        if (bvh.found() && ref.found()) {
+          EXPECT_EQ(bvh.t, ref.t);
+        }
         hits += ref.found();
       }
     }
