@@ -94,5 +94,10 @@ MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {
   const vfloat4 m = min(a, b);
   return min(m, vfloat4{{m.v[2], m.v[3], m.v[0], m.v[1]}});
 }
+MLIB_INLINE vfloat4 reduce_max(vfloat4 a) {
+  const vfloat4 b{{a.v[1], a.v[0], a.v[3], a.v[2]}};
+  const vfloat4 m = max(a, b);
+  return max(m, vfloat4{{m.v[2], m.v[3], m.v[0], m.v[1]}});
+}
 
 }  // namespace mlib

@@ -82,5 +82,10 @@ MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {
   const __m128 m = _mm_min_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
   return {_mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)))};
 }
+// The largest lane, in every lane (likewise).
+MLIB_INLINE vfloat4 reduce_max(vfloat4 a) {
+  const __m128 m = _mm_max_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
+  return {_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)))};
+}
 
 }  // namespace mlib

@@ -71,5 +71,10 @@ MLIB_INLINE vfloat8 reduce_min(vfloat8 a) {
   m = _mm256_min_ps(m, _mm256_permute_ps(m, _MM_SHUFFLE(1, 0, 3, 2)));
   return {_mm256_min_ps(m, _mm256_permute2f128_ps(m, m, 0x01))};
 }
+MLIB_INLINE vfloat8 reduce_max(vfloat8 a) {
+  __m256 m = _mm256_max_ps(a.v, _mm256_permute_ps(a.v, _MM_SHUFFLE(2, 3, 0, 1)));
+  m = _mm256_max_ps(m, _mm256_permute_ps(m, _MM_SHUFFLE(1, 0, 3, 2)));
+  return {_mm256_max_ps(m, _mm256_permute2f128_ps(m, m, 0x01))};
+}
 
 }  // namespace mlib

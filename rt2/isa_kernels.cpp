@@ -23,6 +23,31 @@ void trace_occluded(const Accel& acc, const Ray* rays, const float* t_max, std::
     occluded_out[i] = occluded<Watertight>(acc, rays[i], 0.0f, t_max[i], counts) ? 1 : 0;
 }
 
+// Packet k: rays [packet_begin[k], packet_begin[k + 1]), in lanes 0, 1, ...
+template <bool Watertight>
+void trace_closest_packets(const Accel& acc, const Ray* rays, const float* t_max,
+                           const std::uint32_t* packet_begin, std::size_t packets, Hit* hits,
+                           TraversalCounts* counts) {
+  Hit h[kPacketSize];
+  for (std::size_t k = 0; k < packets; ++k) {
+    const std::uint32_t b = packet_begin[k], n = packet_begin[k + 1] - b;
+    closest_hit_packet<Watertight>(acc, rays + b, (1u << n) - 1, 0.0f, t_max + b, h, counts);
+    std::copy(h, h + n, hits + b);
+  }
+}
+
+template <bool Watertight>
+void trace_occluded_packets(const Accel& acc, const Ray* rays, const float* t_max,
+                            const std::uint32_t* packet_begin, std::size_t packets,
+                            std::uint8_t* occluded_out, TraversalCounts* counts) {
+  for (std::size_t k = 0; k < packets; ++k) {
+    const std::uint32_t b = packet_begin[k], n = packet_begin[k + 1] - b;
+    const PacketMask blocked =
+        occluded_packet<Watertight>(acc, rays + b, (1u << n) - 1, 0.0f, t_max + b, counts);
+    for (std::uint32_t l = 0; l < n; ++l) occluded_out[b + l] = blocked >> l & 1;
+  }
+}
+
 }  // namespace
 
 const IsaKernels& kernels() {
@@ -31,6 +56,8 @@ const IsaKernels& kernels() {
       {&render_tile_kernel<false>, &render_tile_kernel<true>},
       {&trace_closest<false>, &trace_closest<true>},
       {&trace_occluded<false>, &trace_occluded<true>},
+      {&trace_closest_packets<false>, &trace_closest_packets<true>},
+      {&trace_occluded_packets<false>, &trace_occluded_packets<true>},
   };
   return table;
 }

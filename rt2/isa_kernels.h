@@ -29,11 +29,22 @@ struct IsaKernels {
   using TraceOccluded = void (*)(const Accel&, const Ray* rays, const float* t_max,
                                  std::size_t n, std::uint8_t* occluded, TraversalCounts* counts);
 
+  // The same over packets of at most 16 consecutive rays: packet k is rays
+  // [packet_begin[k], packet_begin[k + 1]) (rt2/trace.h).
+  using TraceClosestPackets = void (*)(const Accel&, const Ray* rays, const float* t_max,
+                                       const std::uint32_t* packet_begin, std::size_t packets,
+                                       Hit* hits, TraversalCounts* counts);
+  using TraceOccludedPackets = void (*)(const Accel&, const Ray* rays, const float* t_max,
+                                        const std::uint32_t* packet_begin, std::size_t packets,
+                                        std::uint8_t* occluded, TraversalCounts* counts);
+
   Isa isa;
   // Each indexed by the triangle test: [0] the fast one, [1] the watertight one.
   RenderTile render_tile[2];
   TraceClosest trace_closest[2];
   TraceOccluded trace_occluded[2];
+  TraceClosestPackets trace_closest_packets[2];
+  TraceOccludedPackets trace_occluded_packets[2];
 };
 
 // The table of `isa`, which must be one of built_isas().

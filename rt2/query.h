@@ -7,11 +7,13 @@
 // the code lives in rt2::RT2_ISA, and the ISA's BVH width is fixed here at compile time.
 #pragma once
 
+#include <bit>
 #include <utility>
 #include <vector>
 
 #include "rt2/accel.h"
 #include "rt2/isa.h"
+#include "rt2/bvh/packet_traverse.h"
 #include "rt2/bvh/traverse.h"
 #include "rt2/bvh/wide_traverse.h"
 
@@ -22,6 +24,25 @@ inline constexpr int kWidth = bvh_width(Isa::RT2_ISA);
 
 template <bool Watertight>
 using TriangleTest = std::conditional_t<Watertight, WatertightTriangleTest, FastTriangleTest>;
+
+// The leaf test of a packet walk (triangle_packet_intersect.h), set up for the rays of
+// `lanes`: the fast test one triangle against N rays at a time, the watertight test ray
+// by ray.
+template <bool Watertight>
+struct PacketTestFor {
+  FastPacketTest<kWidth> test;
+  PacketTestFor(const PacketRays<kWidth>& pr, const Ray*, PacketMask) : test{pr.org, pr.dir} {}
+};
+template <>
+struct PacketTestFor<true> {
+  RayByRayPacketTest<WatertightTriangleTest> test;
+  PacketTestFor(const PacketRays<kWidth>&, const Ray* rays, PacketMask lanes) {
+    for (; lanes; lanes &= lanes - 1) {
+      const int l = std::countr_zero(lanes);
+      test.tests[l] = WatertightTriangleTest(rays[l]);
+    }
+  }
+};
 
 // Whether any coordinate of the ray is NaN: such a ray hits nothing (and would otherwise
 // enter every box, NaN slab distances counting as inside).
@@ -44,19 +65,10 @@ MLIB_INLINE void sphere_leaves(const Accel& acc, const Ray& ray, float t_min, fl
   traverse<AnyHit>(acc.sphere_bvh, RayPre(ray), t_min, t_max, leaf);
 }
 
-// The closest hit in (t_min, t_max) over planes, spheres and triangles; t = inf and
-// prim = kNoHit when there is none.
-template <bool Watertight>
-inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_max,
-                       TraversalCounts* counts = nullptr) {
-  Hit h;
-  h.t = t_max;
-  if (has_nan(ray)) {
-    h.t = kInfinity;
-    return h;
-  }
-  // Planes and spheres are tested in the same order by every ISA; triangles, whose order
-  // depends on the tree's width, break ties by index (and win ties against the others).
+// The closest plane or sphere hit in (t_min, h.t), into h. Planes and spheres are tested in
+// the same order by every ISA; triangles, whose order depends on the tree's width, break
+// ties by index (and win ties against the others).
+inline void closest_plane_or_sphere(const Accel& acc, const Ray& ray, float t_min, Hit& h) {
   for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
     float t;
     if (intersect(acc.planes[i], ray, t_min, h.t, t)) {
@@ -76,17 +88,78 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
                          }
                          return false;
                        });
+}
+
+// The closest hit in (t_min, t_max) over planes, spheres and triangles; t = inf and
+// prim = kNoHit when there is none.
+template <bool Watertight>
+inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_max,
+                       TraversalCounts* counts = nullptr) {
+  Hit h;
+  h.t = t_max;
+  if (has_nan(ray)) {
+    h.t = kInfinity;
+    return h;
+  }
+  closest_plane_or_sphere(acc, ray, t_min, h);
   closest_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                            t_min, h, counts);
   if (!h.found()) h.t = kInfinity;
   return h;
 }
 
-// Whether anything at all (every surface opaque) lies on `ray` in (t_min, t_max).
+// Below this many rays a packet's walk costs more than the rays' own walks (measured with
+// bench_trace: primary and shadow rays of 4 x 4 tiles).
+inline constexpr int kMinPacketRays = 4;
+
+// The lanes of `lanes` whose rays have no NaN coordinate.
+inline PacketMask finite_lanes(const Ray* rays, PacketMask lanes) {
+  for (PacketMask m = lanes; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (has_nan(rays[l])) lanes &= ~(1u << l);
+  }
+  return lanes;
+}
+
+// closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
+// t_max[l]) for the lanes l of `lanes` (bit for bit the same), the triangles walked as one
+// packet when the rays allow it (packet_traverse.h). rays, t_max and hits have
+// kPacketSize entries; lanes not in `lanes` are left alone.
 template <bool Watertight>
-inline bool occluded(const Accel& acc, const Ray& ray, float t_min, float t_max,
-                     TraversalCounts* counts = nullptr) {
-  if (has_nan(ray)) return false;
+inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
+                               const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
+  const PacketMask finite = finite_lanes(rays, lanes);
+  for (PacketMask m = lanes; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    hits[l] = Hit{};
+    if (!(finite >> l & 1)) continue;
+    hits[l].t = t_max[l];
+    closest_plane_or_sphere(acc, rays[l], t_min, hits[l]);
+  }
+  const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
+  if (finite && bvh.root != kNoChild) {
+    PacketRays<kWidth> pr;
+    if (std::popcount(finite) >= kMinPacketRays && pr.make(rays, finite)) {
+      const PacketTestFor<Watertight> pt(pr, rays, finite);
+      closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), pr, pt.test, finite, t_min, hits,
+                                      counts);
+    } else {
+      for (PacketMask m = finite; m; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        closest_triangle<kWidth>(bvh, acc.blocks.data(), rays[l],
+                                 TriangleTest<Watertight>(rays[l]), t_min, hits[l], counts);
+      }
+    }
+  }
+  for (PacketMask m = lanes; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (!hits[l].found()) hits[l].t = kInfinity;
+  }
+}
+
+// Whether a plane or a sphere (every surface opaque) lies on `ray` in (t_min, t_max).
+inline bool plane_or_sphere_in_the_way(const Accel& acc, const Ray& ray, float t_min,
+                                       float t_max) {
   for (const Plane& p : acc.planes) {
     float t;
     if (intersect(p, ray, t_min, t_max, t)) return true;
@@ -101,40 +174,90 @@ inline bool occluded(const Accel& acc, const Ray& ray, float t_min, float t_max,
                         }
                         return hit;
                       });
-  if (hit) return true;
+  return hit;
+}
+
+// Whether anything at all (every surface opaque) lies on `ray` in (t_min, t_max).
+template <bool Watertight>
+inline bool occluded(const Accel& acc, const Ray& ray, float t_min, float t_max,
+                     TraversalCounts* counts = nullptr) {
+  if (has_nan(ray)) return false;
+  if (plane_or_sphere_in_the_way(acc, ray, t_min, t_max)) return true;
   return any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                               t_min, t_max, [](std::uint32_t, float) { return true; }, counts);
 }
 
-// How much light passes along the segment (t_min, t_max) of `ray`: 1 when nothing is in
-// the way, 0 when an opaque surface is, and the product of the transparencies Kt of every
-// surface crossed otherwise (each crossing counts once: a glass sphere crossed through
-// attenuates twice, as a closed glass mesh does). The product does not depend on the order
-// the crossings are found in (they are sorted first, up to 16 of them), so every ISA and
-// BVH width gives the same value.
+// The rays of a packet (lanes of `lanes`) that something opaque blocks, as occluded says
+// for each: the triangles walked as one packet when the rays allow it.
 template <bool Watertight>
-inline float transmittance(const Accel& acc, const std::vector<Material>& materials,
-                           const Ray& ray, float t_min, float t_max,
-                           TraversalCounts* counts = nullptr) {
-  if (has_nan(ray)) return 1.0f;
-  constexpr int kKept = 16;
-  float factors[kKept];
-  int kept = 0;
-  float overflow = 1.0f;  // beyond kKept crossings (never seen in practice): in found order
-  // Returns true when no light can pass any more.
-  auto crossing = [&](std::uint32_t material) {
-    const float k = materials[material].transparency;
+inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask lanes,
+                                  float t_min, const float* t_max,
+                                  TraversalCounts* counts = nullptr) {
+  PacketMask open = finite_lanes(rays, lanes), blocked = 0;
+  for (PacketMask m = open; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
+  }
+  open &= ~blocked;
+  const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
+  if (!open || bvh.root == kNoChild) return blocked;
+  PacketRays<kWidth> pr;
+  if (std::popcount(open) >= kMinPacketRays && pr.make(rays, open)) {
+    const PacketTestFor<Watertight> pt(pr, rays, open);
+    return blocked | any_triangle_packet<kWidth>(
+                         bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
+                         [](int, std::uint32_t, float) { return true; }, counts);
+  }
+  for (PacketMask m = open; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l], TriangleTest<Watertight>(rays[l]),
+                             t_min, t_max[l], [](std::uint32_t, float) { return true; }, counts))
+      blocked |= 1u << l;
+  }
+  return blocked;
+}
+
+// The transparencies Kt of the surfaces a shadow ray crosses, multiplied in an order that
+// does not depend on the order they are found in (sorted first, up to 16 of them), so that
+// every ISA, BVH width and walk gives the same value.
+class Crossings {
+ public:
+  // Adds a crossing of a surface of transparency k; returns true when no light can pass
+  // any more (k = 0: opaque).
+  bool cross(float k) {
     if (k == 0.0f) return true;
-    if (kept < kKept)
-      factors[kept++] = k;
+    if (kept_ < kKept)
+      factors_[kept_++] = k;
     else
-      overflow *= k;
+      overflow_ *= k;
     return false;
-  };
+  }
+  // The product of the factors (when cross never returned true).
+  float transmittance() {
+    for (int i = 1; i < kept_; ++i)  // ascending (insertion sort: kept is small)
+      for (int j = i; j > 0 && factors_[j] < factors_[j - 1]; --j)
+        std::swap(factors_[j], factors_[j - 1]);
+    float tr = 1.0f;
+    for (int i = 0; i < kept_; ++i) tr *= factors_[i];
+    return tr * overflow_;
+  }
+
+ private:
+  static constexpr int kKept = 16;
+  float factors_[kKept];
+  int kept_ = 0;
+  float overflow_ = 1.0f;  // beyond kKept crossings (never seen in practice): in found order
+};
+
+// The crossings of planes and spheres on (t_min, t_max) of `ray`; returns true when one is
+// opaque.
+inline bool cross_planes_and_spheres(const Accel& acc, const std::vector<Material>& materials,
+                                     const Ray& ray, float t_min, float t_max, Crossings& c) {
   for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
     float t;
-    if (intersect(acc.planes[i], ray, t_min, t_max, t) && crossing(acc.plane_materials[i]))
-      return 0.0f;
+    if (intersect(acc.planes[i], ray, t_min, t_max, t) &&
+        c.cross(materials[acc.plane_materials[i]].transparency))
+      return true;
   }
   float t_far = t_max;
   bool blocked = false;
@@ -143,24 +266,82 @@ inline float transmittance(const Accel& acc, const std::vector<Material>& materi
                         for (std::uint32_t i = first; i < first + count && !blocked; ++i) {
                           float t, t2;
                           if (!intersect(acc.spheres[i], ray, t_min, t_max, t)) continue;
-                          blocked = crossing(acc.sphere_materials[i]);
+                          const float k = materials[acc.sphere_materials[i]].transparency;
+                          blocked = c.cross(k);
                           // The far side of a sphere is a second crossing.
                           if (!blocked && intersect(acc.spheres[i], ray, t, t_max, t2))
-                            blocked = crossing(acc.sphere_materials[i]);
+                            blocked = c.cross(k);
                         }
                         return blocked;
                       });
-  if (blocked) return 0.0f;
-  const TriangleTest<Watertight> test(ray);
-  if (any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, test, t_min, t_max,
-                           [&](std::uint32_t prim, float) { return crossing(acc.tri_materials[prim]); },
+  return blocked;
+}
+
+// How much light passes along the segment (t_min, t_max) of `ray`: 1 when nothing is in
+// the way, 0 when an opaque surface is, and the product of the transparencies Kt of every
+// surface crossed otherwise (each crossing counts once: a glass sphere crossed through
+// attenuates twice, as a closed glass mesh does).
+template <bool Watertight>
+inline float transmittance(const Accel& acc, const std::vector<Material>& materials,
+                           const Ray& ray, float t_min, float t_max,
+                           TraversalCounts* counts = nullptr) {
+  if (has_nan(ray)) return 1.0f;
+  Crossings c;
+  if (cross_planes_and_spheres(acc, materials, ray, t_min, t_max, c)) return 0.0f;
+  if (any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
+                           t_min, t_max,
+                           [&](std::uint32_t prim, float) {
+                             return c.cross(materials[acc.tri_materials[prim]].transparency);
+                           },
                            counts))
     return 0.0f;
-  for (int i = 1; i < kept; ++i)  // ascending (insertion sort: kept is small)
-    for (int j = i; j > 0 && factors[j] < factors[j - 1]; --j) std::swap(factors[j], factors[j - 1]);
-  float tr = 1.0f;
-  for (int i = 0; i < kept; ++i) tr *= factors[i];
-  return tr * overflow;
+  return c.transmittance();
+}
+
+// transmittance for each ray of a packet: passed[l] for the lanes l of `lanes`, bit for bit
+// what transmittance gives, the triangles walked as one packet when the rays allow it.
+template <bool Watertight>
+inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
+                                 const Ray* rays, PacketMask lanes, float t_min,
+                                 const float* t_max, float* passed,
+                                 TraversalCounts* counts = nullptr) {
+  Crossings c[kPacketSize];
+  PacketMask open = finite_lanes(rays, lanes), blocked = 0;
+  for (PacketMask m = lanes & ~open; m; m &= m - 1) passed[std::countr_zero(m)] = 1.0f;
+  for (PacketMask m = open; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (cross_planes_and_spheres(acc, materials, rays[l], t_min, t_max[l], c[l]))
+      blocked |= 1u << l;
+  }
+  open &= ~blocked;
+  const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
+  if (open && bvh.root != kNoChild) {
+    PacketRays<kWidth> pr;
+    if (std::popcount(open) >= kMinPacketRays && pr.make(rays, open)) {
+      const PacketTestFor<Watertight> pt(pr, rays, open);
+      blocked |= any_triangle_packet<kWidth>(
+          bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
+          [&](int l, std::uint32_t prim, float) {
+            return c[l].cross(materials[acc.tri_materials[prim]].transparency);
+          },
+          counts);
+    } else {
+      for (PacketMask m = open; m; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l],
+                                 TriangleTest<Watertight>(rays[l]), t_min, t_max[l],
+                                 [&](std::uint32_t prim, float) {
+                                   return c[l].cross(materials[acc.tri_materials[prim]].transparency);
+                                 },
+                                 counts))
+          blocked |= 1u << l;
+      }
+    }
+  }
+  for (PacketMask m = lanes & finite_lanes(rays, lanes); m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    passed[l] = blocked >> l & 1 ? 0.0f : c[l].transmittance();
+  }
 }
 
 }  // namespace rt2::RT2_ISA

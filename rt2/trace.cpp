@@ -16,6 +16,21 @@ void trace_occluded(const Accel& acc, const TraceOptions& options, const Ray* ra
   isa_kernels(acc.isa).trace_occluded[options.watertight](acc, rays, t_max, n, occluded, counts);
 }
 
+void trace_closest_packets(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                           const float* t_max, const std::uint32_t* packet_begin,
+                           std::size_t packets, Hit* hits, TraversalCounts* counts) {
+  isa_kernels(acc.isa).trace_closest_packets[options.watertight](acc, rays, t_max, packet_begin,
+                                                                 packets, hits, counts);
+}
+
+void trace_occluded_packets(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                            const float* t_max, const std::uint32_t* packet_begin,
+                            std::size_t packets, std::uint8_t* occluded,
+                            TraversalCounts* counts) {
+  isa_kernels(acc.isa).trace_occluded_packets[options.watertight](
+      acc, rays, t_max, packet_begin, packets, occluded, counts);
+}
+
 Hit trace_closest(const Accel& acc, const Ray& ray, float t_max, const TraceOptions& options) {
   Hit h;
   trace_closest(acc, options, &ray, &t_max, 1, &h);

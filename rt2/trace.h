@@ -29,6 +29,18 @@ void trace_occluded(const Accel& acc, const TraceOptions& options, const Ray* ra
                     const float* t_max, std::size_t n, std::uint8_t* occluded,
                     TraversalCounts* counts = nullptr);
 
+// The same for packets of coherent rays (a 4 x 4 tile of primary rays, their shadow rays):
+// packet k is rays [packet_begin[k], packet_begin[k + 1]), at most 16 consecutive rays,
+// walked together (rt2/bvh/packet_traverse.h) when their directions allow it, else one by
+// one. The answers are those of trace_closest / trace_occluded, bit for bit.
+void trace_closest_packets(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                           const float* t_max, const std::uint32_t* packet_begin,
+                           std::size_t packets, Hit* hits, TraversalCounts* counts = nullptr);
+void trace_occluded_packets(const Accel& acc, const TraceOptions& options, const Ray* rays,
+                            const float* t_max, const std::uint32_t* packet_begin,
+                            std::size_t packets, std::uint8_t* occluded,
+                            TraversalCounts* counts = nullptr);
+
 // One ray: the closest hit in (0, t_max), and whether anything lies in (0, t_max).
 Hit trace_closest(const Accel& acc, const Ray& ray, float t_max = kInfinity,
                   const TraceOptions& options = {});

@@ -45,13 +45,17 @@ struct WideBvh {
   std::uint32_t max_depth = 0;
 };
 
-// What walks of the tree did, for benchmarks: inner nodes visited and leaf blocks tested
-// (four triangles each).
+// What walks of the tree did, for benchmarks and --stats: inner nodes visited (a packet's
+// frustum test of a node counts once), leaf blocks tested (four triangles each, per ray),
+// and the walks made as packets (packet_traverse.h) with the rays they carried.
 struct TraversalCounts {
   std::uint64_t nodes = 0, blocks = 0;
+  std::uint64_t packets = 0, packet_rays = 0;
   TraversalCounts& operator+=(const TraversalCounts& o) {
     nodes += o.nodes;
     blocks += o.blocks;
+    packets += o.packets;
+    packet_rays += o.packet_rays;
     return *this;
   }
 };

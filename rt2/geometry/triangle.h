@@ -68,6 +68,7 @@ struct WatertightRay {
   int kx, ky, kz;
   float sx, sy, sz;
 
+  WatertightRay() = default;  // unset, to be assigned
   explicit WatertightRay(const Ray& r) : org(r.org) {
     const float ax = std::fabs(r.dir[0]), ay = std::fabs(r.dir[1]), az = std::fabs(r.dir[2]);
     kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);

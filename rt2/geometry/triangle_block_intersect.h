@@ -53,18 +53,67 @@ MLIB_INLINE NearestHit nearest_lane(vbool4 hit, vfloat4 t, vfloat4 u, vfloat4 v)
   return n;
 }
 
-// The thesis's test (formula 10), four triangles at a time, computing what `intersect`
-// (triangle.h) computes. A ray parallel to a triangle divides by zero and fails every
-// comparison; an empty lane (NaN) likewise.
+// The thesis's test (formula 10) for the lanes of V, each lane one (triangle, ray) pair,
+// computing what `intersect` (triangle.h) computes. Shared by the four-triangle test below
+// (four triangles, one ray) and the packet test (triangle_packet_intersect.h: one triangle,
+// N rays), so both compute the same values, bit for bit. A ray parallel to a triangle
+// divides by zero and fails every comparison; an empty lane (NaN) likewise.
 //
 // Most lanes miss, and most are rejected before any division: u >= 0 and v >= 0 are sign
 // tests of S·E2 and S·E1 against Dir·N (the same tests `intersect` makes), and u + v <= 1
 // and the t interval are checked in the undivided form with a relative slack of 2^-20 that
 // makes the check a superset of the divided one. Lanes that survive are divided and tested
 // exactly.
+template <class V>
+struct FastTerms {
+  V tn, su, sv, den;  // T·N, S·E2, S·E1, Dir·N
+
+  MLIB_INLINE FastTerms(const V* v0, const V* v1, const V* v2, const V* org, const V* dir) {
+    V e1[3], e2[3], tv[3];
+    for (int a = 0; a < 3; ++a) {
+      e1[a] = v0[a] - v1[a];   // E1 = V0 - V1
+      e2[a] = v2[a] - v0[a];   // E2 = V2 - V0
+      tv[a] = v0[a] - org[a];  // T = V0 - P
+    }
+    // N = E2 x E1, as Triangle::make computes it (cross(c - a, a - b)).
+    const V n[3] = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],
+                    e2[0] * e1[1] - e2[1] * e1[0]};
+    // S = T x Dir
+    const V s[3] = {tv[1] * dir[2] - tv[2] * dir[1], tv[2] * dir[0] - tv[0] * dir[2],
+                    tv[0] * dir[1] - tv[1] * dir[0]};
+    const auto dot = [](const V* p, const V* q) { return (p[0] * q[0] + p[1] * q[1]) + p[2] * q[2]; };
+    den = dot(dir, n);
+    su = dot(s, e2);
+    sv = dot(s, e1);
+    tn = dot(tv, n);
+  }
+
+  // The lanes that may hit with t in (t_min, t_max] (a superset of those that do).
+  MLIB_INLINE unsigned may_hit(V t_min, V t_max) const {
+    const V zero = V::broadcast(0.0f);
+    const V u = mlib::xor_sign(su, den), v = mlib::xor_sign(sv, den);
+    const V t = mlib::xor_sign(tn, den), ad = mlib::abs(den);
+    const V up = V::broadcast(1.0f + 0x1p-20f), down = V::broadcast(1.0f - 0x1p-20f);
+    return mlib::bits((u >= zero) & (v >= zero) & (u + v <= ad * up) &
+                      (t > t_min * ad * down) & (t <= t_max * ad * up));
+  }
+
+  // The exact test: the lanes hit with t in (t_min, t_max], and their t, u, v.
+  MLIB_INLINE typename V::bool_type exact(V t_min, V t_max, V& t, V& u, V& v) const {
+    const V zero = V::broadcast(0.0f);
+    t = tn / den;
+    u = su / den;
+    v = sv / den;
+    return (mlib::xor_sign(su, den) >= zero) & (mlib::xor_sign(sv, den) >= zero) &
+           (t > t_min) & (t <= t_max) & (u + v <= V::broadcast(1.0f));
+  }
+};
+
+// The fast test of one ray against the four triangles of a block.
 struct FastTriangleTest {
   vfloat4 org[3], dir[3];
 
+  FastTriangleTest() = default;  // unset, to be assigned (an array of per-ray tests)
   explicit FastTriangleTest(const Ray& r) {
     for (int a = 0; a < 3; ++a) {
       org[a] = vfloat4::broadcast(r.org[a]);
@@ -74,50 +123,25 @@ struct FastTriangleTest {
 
   // The undivided quantities, and the lanes that may hit in (t_min, t_max].
   struct Undivided {
-    vfloat4 tn, su, sv, den;  // T·N, S·E2, S·E1, Dir·N
+    FastTerms<vfloat4> terms;
     unsigned may_hit;
   };
 
   MLIB_INLINE Undivided undivided(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
-    vfloat4 v0[3], e1[3], e2[3], tv[3];
+    vfloat4 v0[3], v1[3], v2[3];
     for (int a = 0; a < 3; ++a) {
       v0[a] = vfloat4::load(b.v0[a]);
-      e1[a] = v0[a] - vfloat4::load(b.v1[a]);  // E1 = V0 - V1
-      e2[a] = vfloat4::load(b.v2[a]) - v0[a];  // E2 = V2 - V0
-      tv[a] = v0[a] - org[a];                  // T = V0 - P
+      v1[a] = vfloat4::load(b.v1[a]);
+      v2[a] = vfloat4::load(b.v2[a]);
     }
-    // N = E2 x E1, as Triangle::make computes it (cross(c - a, a - b)).
-    const vfloat4 n[3] = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],
-                          e2[0] * e1[1] - e2[1] * e1[0]};
-    // S = T x Dir
-    const vfloat4 s[3] = {tv[1] * dir[2] - tv[2] * dir[1], tv[2] * dir[0] - tv[0] * dir[2],
-                          tv[0] * dir[1] - tv[1] * dir[0]};
-    const auto dot = [](const vfloat4* p, const vfloat4* q) {
-      return (p[0] * q[0] + p[1] * q[1]) + p[2] * q[2];
-    };
-    Undivided d;
-    d.den = dot(dir, n);
-    d.su = dot(s, e2);
-    d.sv = dot(s, e1);
-    d.tn = dot(tv, n);
-    const vfloat4 zero = vfloat4::broadcast(0.0f);
-    const vfloat4 u = mlib::xor_sign(d.su, d.den), v = mlib::xor_sign(d.sv, d.den);
-    const vfloat4 t = mlib::xor_sign(d.tn, d.den), ad = mlib::abs(d.den);
-    const vfloat4 up = vfloat4::broadcast(1.0f + 0x1p-20f), down = vfloat4::broadcast(1.0f - 0x1p-20f);
-    d.may_hit = mlib::bits((u >= zero) & (v >= zero) & (u + v <= ad * up) &
-                           (t > t_min * ad * down) & (t <= t_max * ad * up));
-    return d;
+    const FastTerms<vfloat4> f(v0, v1, v2, org, dir);
+    return {f, f.may_hit(t_min, t_max)};
   }
 
   // The exact test of the lanes in d.may_hit: t in (t_min, t_max], u, v.
   MLIB_INLINE static vbool4 exact(const Undivided& d, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
                                   vfloat4& u, vfloat4& v) {
-    const vfloat4 zero = vfloat4::broadcast(0.0f);
-    t = d.tn / d.den;
-    u = d.su / d.den;
-    v = d.sv / d.den;
-    return (mlib::xor_sign(d.su, d.den) >= zero) & (mlib::xor_sign(d.sv, d.den) >= zero) &
-           (t > t_min) & (t <= t_max) & (u + v <= vfloat4::broadcast(1.0f));
+    return d.terms.exact(t_min, t_max, t, u, v);
   }
 
   // Every lane hit with t in (t_min, t_max].
@@ -148,6 +172,7 @@ struct WatertightTriangleTest {
   WatertightRay ray;
   vfloat4 org[3], sx, sy, sz;
 
+  WatertightTriangleTest() = default;  // unset, to be assigned
   explicit WatertightTriangleTest(const Ray& r) : ray(r) {
     for (int a = 0; a < 3; ++a) org[a] = vfloat4::broadcast(r.org[a]);
     sx = vfloat4::broadcast(ray.sx);

@@ -43,12 +43,18 @@
 //               t_max = +inf.
 //
 // MEASUREMENT. Each engine traces the whole set once untimed (its answers are the ones
-// compared below), then --reps timed runs, interleaved: rep 1 rt2, rep 1 embree, rep 1
-// embree16, rep 2 rt2, ... so drift hits all alike. A run is split into chunks of --chunk
+// compared below), then --reps timed runs, interleaved: rep 1 rt2, rep 1 rt2_packets,
+// rep 1 embree, rep 1 embree16, rep 2 rt2, ... so drift hits all alike. A run is split into chunks of --chunk
 // rays (4096; 256 tiles for packets) traced by oneTBB parallel_for in a task_arena of the
 // given thread count (--threads, default 1 and all); FTZ and DAZ are set in every chunk
 // (mlib/fpmode.h), as Embree sets them in its own threads. Mrays/s = rays / wall time.
 //   engine=rt2       trace_closest / trace_occluded over each chunk;
+//   engine=rt2_packets  trace_closest_packets / trace_occluded_packets, one packet per
+//                    4 x 4 tile (primary and shadow only): the packet walk of
+//                    rt2/bvh/packet_traverse.h. Its answers must equal engine=rt2's bit
+//                    for bit (t, u, v, triangle): `differences` counts the rays where
+//                    they do not; `rays_in_packets` the rays per set ray walked in a
+//                    packet (the rest fell back to single rays);
 //   engine=embree    rtcIntersect1 / rtcOccluded1 per ray, tnear = 0, tfar = t_max;
 //   engine=embree16  rtcIntersect16 / rtcOccluded16 per 4 x 4 tile (primary and shadow
 //                    only; a lane is invalid where the primary ray missed).
@@ -68,11 +74,13 @@
 //   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
 //       bytes=... bytes_per_tri=...      (and engine=embree test=T lines, then ratio lines)
 //   mesh=M set=S engine=E test=T threads=K rays=... mrays_median=... mrays_min=...
-//       mrays_max=... hits=...  [Embree lines add, against rt2: disagree=...
+//       mrays_max=... hits=... [nodes_per_ray=... triangles_per_ray=...; rt2_packets adds
+//       rays_in_packets=... differences=...] [Embree lines add, against rt2: disagree=...
 //       disagree_edge=... disagree_end=... tdiff=... tdiff_edge=...]
 //   mesh=M set=S test=T threads=K ratio=... [ratio16=...]
-// ratio = rt2's median Mrays/s / Embree's (rtcIntersect1), ratio16 the same against the
-// 16-ray packets; for set=build, Embree's median build time / rt2's. Above 1: rt2 faster.
+// ratio = rt2's median Mrays/s / Embree's (rtcIntersect1); ratio16 = rt2_packets' against
+// Embree's 16-ray packets (rtcIntersect16), ratio_single_to_16 = rt2's single rays against
+// them; for set=build, Embree's median build time / rt2's. Above 1: rt2 faster.
 // disagree: rays where exactly one engine hits (closest) or reports occlusion (shadow);
 // disagree_edge: those whose ray passes within a relative 1e-4 of an edge of the face under
 // the hit (the distance between the ray's line and the nearest edge, over the face's
@@ -499,15 +507,27 @@ void trace_and_report(const Options& o, const Model& m, const RaySet& set,
                       const bench::FaceLocator& faces,
                       std::vector<std::unique_ptr<tbb::task_arena>>& arenas) {
   for (bool watertight : o.tests) {
+    // Runner indices: rt2 single rays, rt2 packets, Embree single rays, Embree packets
+    // (-1: not run).
     std::vector<Runner> runners;
+    int rt2p = -1, embree1 = -1, embree16 = -1;
     runners.push_back(bench::rt2_runner(acc, rt2::TraceOptions{watertight}, set, o.chunk));
+    if (set.tiles()) {
+      rt2p = int(runners.size());
+      runners.push_back(bench::rt2_packet_runner(acc, rt2::TraceOptions{watertight}, set, o.chunk));
+    }
 #if defined(RT2_HAVE_EMBREE)
     if (o.embree) {
       const RTCScene scene = embree_scenes[watertight];
+      embree1 = int(runners.size());
       runners.push_back(bench::embree1_runner(scene, set, o.chunk));
-      if (set.tiles()) runners.push_back(bench::embree16_runner(scene, set, o.chunk));
+      if (set.tiles()) {
+        embree16 = int(runners.size());
+        runners.push_back(bench::embree16_runner(scene, set, o.chunk));
+      }
     }
 #endif
+    std::size_t packet_differences = 0;
     std::vector<Agreement> agreement(runners.size());
     for (std::size_t ti = 0; ti < o.threads.size(); ++ti) {
       std::fprintf(stderr, "bench_trace: %s %s %s, %d thread(s), %zu rays, %d reps\n",
@@ -517,9 +537,11 @@ void trace_and_report(const Options& o, const Model& m, const RaySet& set,
         r.mrays.clear();
         bench::run_chunks(*arenas[ti], r.units, r.chunk, r.body);  // untimed: warms, answers
       }
-      if (ti == 0)
+      if (ti == 0) {
         for (std::size_t k = 1; k < runners.size(); ++k)
           agreement[k] = compare(set, runners[0], runners[k], m.scale, faces, o.show);
+        if (rt2p >= 0) packet_differences = bench::bitwise_differences(runners[0], runners[rt2p]);
+      }
       for (int rep = 0; rep < o.reps; ++rep)
         for (Runner& r : runners) {
           const double seconds = bench::run_chunks(*arenas[ti], r.units, r.chunk, r.body);
@@ -532,35 +554,45 @@ void trace_and_report(const Options& o, const Model& m, const RaySet& set,
                     "mrays_min=%.3f mrays_max=%.3f hits=%zu",
                     m.name.c_str(), set.name.c_str(), r.engine.c_str(), test_name(watertight),
                     o.threads[ti], set.size(), mr.median, mr.min, mr.max, r.answers.count());
-        if (k == 0) {  // rt2's own counters: what a ray costs it
+        if (k == 0 || int(k) == rt2p) {  // rt2's own counters: what a ray costs it
+          const rt2::TraceOptions opt{watertight};
           rt2::TraversalCounts counts;
-          if (set.occlusion) {
-            std::vector<std::uint8_t> occ(set.size());
-            rt2::trace_occluded(acc, rt2::TraceOptions{watertight}, set.rays.data(),
-                                set.t_max.data(), set.size(), occ.data(), &counts);
-          } else {
-            std::vector<Hit> hits(set.size());
-            rt2::trace_closest(acc, rt2::TraceOptions{watertight}, set.rays.data(),
-                               set.t_max.data(), set.size(), hits.data(), &counts);
-          }
+          std::vector<std::uint8_t> occ(set.size());
+          std::vector<Hit> hits(set.size());
+          if (k == 0 && set.occlusion)
+            rt2::trace_occluded(acc, opt, set.rays.data(), set.t_max.data(), set.size(),
+                                occ.data(), &counts);
+          else if (k == 0)
+            rt2::trace_closest(acc, opt, set.rays.data(), set.t_max.data(), set.size(),
+                               hits.data(), &counts);
+          else if (set.occlusion)
+            rt2::trace_occluded_packets(acc, opt, set.rays.data(), set.t_max.data(),
+                                        set.tile_begin.data(), set.tiles(), occ.data(), &counts);
+          else
+            rt2::trace_closest_packets(acc, opt, set.rays.data(), set.t_max.data(),
+                                       set.tile_begin.data(), set.tiles(), hits.data(), &counts);
           std::printf(" nodes_per_ray=%.2f triangles_per_ray=%.2f",
                       double(counts.nodes) / double(set.size()),
                       4.0 * double(counts.blocks) / double(set.size()));
+          if (k > 0)
+            std::printf(" rays_in_packets=%.3f differences=%zu",
+                        double(counts.packet_rays) / double(set.size()), packet_differences);
         }
-        if (k > 0)
+        if (k > 0 && int(k) != rt2p)
           std::printf(" disagree=%zu disagree_edge=%zu disagree_end=%zu tdiff=%zu "
                       "tdiff_edge=%zu",
                       agreement[k].disagree, agreement[k].edge, agreement[k].end,
                       agreement[k].tdiff, agreement[k].tdiff_edge);
         std::printf("\n");
       }
-      if (runners.size() > 1) {
-        const double base = stats(runners[0].mrays).median;
+      if (embree1 >= 0) {
+        const auto median = [&](int k) { return stats(runners[k].mrays).median; };
         std::printf("mesh=%s set=%s test=%s threads=%d ratio=%.3f", m.name.c_str(),
                     set.name.c_str(), test_name(watertight), o.threads[ti],
-                    base / stats(runners[1].mrays).median);
-        if (runners.size() > 2)
-          std::printf(" ratio16=%.3f", base / stats(runners[2].mrays).median);
+                    median(0) / median(embree1));
+        if (embree16 >= 0)
+          std::printf(" ratio16=%.3f ratio_single_to_16=%.3f", median(rt2p) / median(embree16),
+                      median(0) / median(embree16));
         std::printf("\n");
       }
       std::fflush(stdout);

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -117,6 +118,42 @@ inline Runner rt2_runner(const rt2::Accel& acc, const rt2::TraceOptions& opt,
     return h;
   };
   return r;
+}
+
+// rt2's packets: trace_closest_packets / trace_occluded_packets over each chunk of 4 x 4
+// tiles (coherent sets only), a tile's rays in one packet.
+inline Runner rt2_packet_runner(const rt2::Accel& acc, const rt2::TraceOptions& opt,
+                                const RaySet& set, std::size_t chunk) {
+  Runner r = rt2_runner(acc, opt, set, chunk);
+  r.engine = "rt2_packets";
+  r.units = set.tiles();
+  r.chunk = std::max<std::size_t>(1, chunk / 16);
+  if (set.occlusion) {
+    r.body = [&acc, opt, &set, out = r.answers.occluded.data()](std::size_t b, std::size_t e) {
+      rt2::trace_occluded_packets(acc, opt, set.rays.data(), set.t_max.data(),
+                                  set.tile_begin.data() + b, e - b, out);
+    };
+  } else {
+    r.body = [&acc, opt, &set, out = r.answers.hits.data()](std::size_t b, std::size_t e) {
+      rt2::trace_closest_packets(acc, opt, set.rays.data(), set.t_max.data(),
+                                 set.tile_begin.data() + b, e - b, out);
+    };
+  }
+  return r;
+}
+
+// How many answers of two rt2 runners differ in any bit (hit t, u, v, primitive, or
+// occlusion): the packets must give the single rays' answers exactly.
+inline std::size_t bitwise_differences(const Runner& a, const Runner& b) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.answers.hits.size(); ++i) {
+    const Hit &x = a.answers.hits[i], &y = b.answers.hits[i];
+    n += std::memcmp(&x.t, &y.t, sizeof(float)) || std::memcmp(&x.u, &y.u, sizeof(float)) ||
+         std::memcmp(&x.v, &y.v, sizeof(float)) || x.prim != y.prim;
+  }
+  for (std::size_t i = 0; i < a.answers.occluded.size(); ++i)
+    n += a.answers.occluded[i] != b.answers.occluded[i];
+  return n;
 }
 
 }  // namespace bench

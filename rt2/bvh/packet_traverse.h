@@ -1,0 +1,315 @@
+// rt2/bvh/packet_traverse.h — walking the wide BVH with a packet of up to 16 coherent rays
+// (a 4 x 4 block of primary rays, or their shadow rays towards one light): the closest
+// hits, and an any-hit walk for shadow rays.
+//
+// Inner nodes are tested against the packet's frustum, not ray by ray: per axis, the
+// interval of the rays' origins and of their reciprocal directions bound every ray's slab
+// distances (interval arithmetic; Boulos et al. 2007, "Geometric and arithmetic culling
+// methods for entire ray packets"), so one SIMD pass over a node's N children, as costly
+// as one ray's, decides for all 16 rays at once. The rays must share their direction's
+// sign on every axis (the same near and far box rows), and every 1/dir component must be
+// finite; otherwise the caller walks the rays one by one (wide_traverse.h).
+//
+// The frustum never culls a box one of the rays enters. Per axis, with the ray's own
+// rows, its entry distance is n = (b_near - o) * inv and its exit f = (b_far - o) * inv_far
+// (inv_far = inv * kSlabPad, as in wide_traverse.h). Rounding is monotone, so over the
+// packet n >= (b_near - O_near) * I_near where O_near is the origin bound that makes the
+// difference smallest in magnitude and I_near the reciprocal of smallest magnitude, as
+// long as that difference has the sign of a box in front; when it has not, the bound is
+// negative and the entry is t_min's anyway (the node test takes the maximum with
+// t_min >= 0). Likewise f <= (b_far - O_far) * I_far with the largest magnitudes, and a
+// ray whose exit is negative fails its own test. Compared as integers (NodeRay<N, true>),
+// as every ray's own test compares them, the packet enters a box whenever a ray does.
+//
+// At a leaf, each ray is tested against the leaf's box (from its parent) with exactly the
+// arithmetic of its own walk, SIMD over rays, and only the rays that enter it test the
+// leaf's triangle blocks, each with its own triangle test. So every ray finds the hit its
+// own walk finds, bit for bit: the closest one (ties to the smaller index, as there), or
+// for any-hit the same answer. The closest-hit walk visits children nearest first by the
+// frustum's entry distance and drops a subtree when it lies beyond every ray's hit.
+//
+// Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include "rt2/bvh/wide_traverse.h"
+#include "rt2/geometry/triangle_packet_intersect.h"
+
+namespace rt2::RT2_ISA {
+
+// A packet's rays as the walk needs them: structure of arrays for SIMD over rays (the
+// per-ray slab terms of NodeRay<N, true>), and the frustum that bounds them.
+template <int N>
+struct PacketRays {
+  using V = mlib::vfloat<N>;
+  static_assert(kPacketSize % N == 0);
+
+  alignas(64) float org[3][kPacketSize];
+  alignas(64) float dir[3][kPacketSize];
+  alignas(64) float inv_near[3][kPacketSize];
+  alignas(64) float inv_far[3][kPacketSize];
+  int near[3], far[3];  // box rows, shared by all rays
+  // The frustum, per axis: (bounds[near] - o_near) * i_near is at most every ray's entry
+  // distance, (bounds[far] - o_far) * i_far at least every exit (see the file comment).
+  V o_near[3], o_far[3], i_near[3], i_far[3];
+
+  // Sets the packet up from rays[l] for the lanes l of `lanes` (at least one). Returns false
+  // when the rays cannot walk together: their directions' signs differ on an axis, or a
+  // component of a direction is zero (an infinite reciprocal).
+  bool make(const Ray* rays, PacketMask lanes) {
+    const int first = std::countr_zero(lanes);
+    for (int l = 0; l < kPacketSize; ++l) {
+      // Lanes without a ray take the first ray's values: their bits are masked off later,
+      // and the frustum's bounds stay those of the rays.
+      const Ray& r = rays[lanes >> l & 1 ? l : first];
+      for (int a = 0; a < 3; ++a) {
+        org[a][l] = r.org[a];
+        dir[a][l] = r.dir[a];
+      }
+    }
+    constexpr PacketMask kAll = (PacketMask(1) << kPacketSize) - 1;
+    const V one = V::broadcast(1.0f), pad = V::broadcast(kSlabPad), zero = V::broadcast(0.0f),
+            inf = V::broadcast(kInfinity), minus_inf = V::broadcast(-kInfinity);
+    for (int a = 0; a < 3; ++a) {
+      V o_lo = inf, o_hi = minus_inf, i_lo = inf, i_hi = minus_inf, f_lo = inf, f_hi = minus_inf;
+      PacketMask negative = 0, finite = 0;
+      for (int c = 0; c < kPacketSize; c += N) {
+        const V d = V::load(dir[a] + c), o = V::load(org[a] + c);
+        const V inv = one / d;  // as RayPre computes it
+        const V inv_f = inv * pad;
+        inv.store(inv_near[a] + c);
+        inv_f.store(inv_far[a] + c);
+        negative |= PacketMask(mlib::bits(d < zero)) << c;
+        finite |= PacketMask(mlib::bits(abs(inv) < inf)) << c;
+        o_lo = min(o_lo, o), o_hi = max(o_hi, o);
+        i_lo = min(i_lo, inv), i_hi = max(i_hi, inv);
+        f_lo = min(f_lo, inv_f), f_hi = max(f_hi, inv_f);
+      }
+      // A zero component (-0 included) has an infinite reciprocal.
+      if (finite != kAll || (negative != 0 && negative != kAll)) return false;
+      near[a] = 2 * a + (negative ? 1 : 0);
+      far[a] = near[a] ^ 1;
+      // Positive direction: the near plane is a box's low side, nearest to the largest
+      // origin; negative: its high side, nearest to the smallest origin.
+      o_near[a] = negative ? mlib::reduce_min(o_lo) : mlib::reduce_max(o_hi);
+      o_far[a] = negative ? mlib::reduce_max(o_hi) : mlib::reduce_min(o_lo);
+      i_near[a] = negative ? mlib::reduce_max(i_hi) : mlib::reduce_min(i_lo);  // smallest |.|
+      i_far[a] = negative ? mlib::reduce_min(f_lo) : mlib::reduce_max(f_hi);   // largest |.|
+    }
+    return true;
+  }
+
+  // The frustum against a node's N child boxes: bit i set when some ray may enter child i
+  // within [t_min, t_max_padded / kSlabPad], `entry` a lower bound of their entry
+  // distances. As NodeRay::test (the integer form), with the frustum's bounds.
+  MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max_padded, V& entry) const {
+    V n[3], f[3];
+    for (int a = 0; a < 3; ++a) {
+      n[a] = (V::load(node.bounds[near[a]]) - o_near[a]) * i_near[a];
+      f[a] = (V::load(node.bounds[far[a]]) - o_far[a]) * i_far[a];
+    }
+    entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
+    return mlib::bits(ile(entry, imin(imin(f[0], f[1]), imin(f[2], t_max_padded))));
+  }
+
+  // The lanes of `lanes` whose rays enter child `slot` of `node` within [t_min,
+  // t_max_padded[l] / kSlabPad]: each ray's own test (NodeRay<N, true>::test), N rays at a
+  // time.
+  MLIB_INLINE PacketMask enter(const WideNode<N>& node, int slot, PacketMask lanes, V t_min,
+                               const float* t_max_padded) const {
+    V lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = V::broadcast(node.bounds[near[a]][slot]);
+      hi[a] = V::broadcast(node.bounds[far[a]][slot]);
+    }
+    PacketMask mask = 0;
+    for (int c = 0; c < kPacketSize; c += N) {
+      if (!(lanes >> c & ((1u << N) - 1))) continue;
+      V n[3], f[3];
+      for (int a = 0; a < 3; ++a) {
+        const V o = V::load(org[a] + c);
+        n[a] = (lo[a] - o) * V::load(inv_near[a] + c);
+        f[a] = (hi[a] - o) * V::load(inv_far[a] + c);
+      }
+      const V entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
+      const V exit = imin(imin(f[0], f[1]), imin(f[2], V::load(t_max_padded + c)));
+      mask |= PacketMask(mlib::bits(ile(entry, exit))) << c;
+    }
+    return mask & lanes;
+  }
+};
+
+// A pending subtree of a packet walk: its entry distance (closest hit only), and the node
+// and slot it hangs from, for the rays' own test of a leaf's box.
+struct PacketStackEntry {
+  std::uint32_t ref;
+  float t;
+  std::uint32_t parent;
+  std::uint32_t slot;
+};
+
+// Walks counted as packets, and the rays they carried.
+MLIB_INLINE void count_packet(TraversalCounts& c, PacketMask lanes) {
+  ++c.packets;
+  c.packet_rays += static_cast<unsigned>(std::popcount(lanes));
+}
+
+// The closest triangle hit of each ray l of `lanes` in (t_min, hits[l].t), updating
+// hits[l] as closest_triangle_walk does (ties to the smaller index). `test` tests a leaf
+// block against the packet's rays (triangle_packet_intersect.h); `pr` was made from the
+// same rays and lanes.
+template <int N, class PacketTest>
+inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                    const PacketRays<N>& pr, const PacketTest& test,
+                                    PacketMask lanes, float t_min, Hit* hits,
+                                    TraversalCounts* counts) {
+  using V = mlib::vfloat<N>;
+  const V t_min_v = V::broadcast(t_min);
+  TraversalCounts local;
+  count_packet(local, lanes);
+  alignas(64) float t_best[kPacketSize];
+  alignas(64) float t_max_padded[kPacketSize];
+  float t_far = 0.0f;  // the largest of them: no ray hits anything beyond
+  for (int l = 0; l < kPacketSize; ++l) {
+    t_best[l] = hits[l].t;
+    t_max_padded[l] = hits[l].t * kSlabPad;
+    if (lanes >> l & 1) t_far = std::max(t_far, t_max_padded[l]);
+  }
+  PacketStackEntry stack[kStackSize<N>];
+  int sp = 0;
+  std::uint32_t ref = bvh.root, parent = kNoChild, slot = 0;
+  alignas(64) float entry_t[N];
+  for (;;) {
+    while (!(ref & kLeaf)) {
+      ++local.nodes;
+      const WideNode<N>& node = bvh.nodes[ref];
+      V entry;
+      unsigned mask = pr.test(node, t_min_v, V::broadcast(t_far), entry);
+      if (mask == 0) goto pop;
+      entry.store(entry_t);
+      {
+        // Nearest first: the others go on the stack, farthest deepest.
+        PacketStackEntry hit[N];
+        int k = 0;
+        for (; mask; mask &= mask - 1) {
+          const unsigned i = static_cast<unsigned>(std::countr_zero(mask));
+          hit[k++] = {node.child[i], entry_t[i], ref, i};
+        }
+        for (int a = 1; a < k; ++a)
+          for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
+        for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
+        for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
+        ref = hit[k - 1].ref;
+        parent = hit[k - 1].parent;
+        slot = hit[k - 1].slot;
+      }
+    }
+    {
+      // A leaf: the rays that enter its box (all of them when the tree is one leaf).
+      const PacketMask rays =
+          parent == kNoChild ? lanes
+                             : pr.enter(bvh.nodes[parent], int(slot), lanes, t_min_v, t_max_padded);
+      if (rays) {
+        for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
+          local.blocks += static_cast<unsigned>(std::popcount(rays));
+          test.nearest(*b, rays, t_min, hits, t_best);
+          if (b->last()) break;
+        }
+        t_far = 0.0f;
+        for (PacketMask m = rays; m; m &= m - 1) {
+          const int l = std::countr_zero(m);
+          t_max_padded[l] = t_best[l] * kSlabPad;
+        }
+        for (PacketMask m = lanes; m; m &= m - 1) t_far = std::max(t_far, t_max_padded[std::countr_zero(m)]);
+      }
+    }
+  pop:
+    for (;;) {
+      if (sp == 0) {
+        if (counts) *counts += local;
+        return;
+      }
+      const PacketStackEntry& e = stack[--sp];
+      if (e.t <= t_far) {
+        ref = e.ref;
+        parent = e.parent;
+        slot = e.slot;
+        break;
+      }
+    }
+  }
+}
+
+// Calls on_hit(l, prim, t) for triangles hit by ray l of `lanes` in (t_min, t_max[l]), in
+// no particular order, until it returns true for that ray (then the ray is done). Returns
+// the lanes for which it did.
+template <int N, class PacketTest, class OnHit>
+inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                      const PacketRays<N>& pr, const PacketTest& test,
+                                      PacketMask lanes, float t_min, const float* t_max,
+                                      OnHit&& on_hit, TraversalCounts* counts) {
+  using V = mlib::vfloat<N>;
+  const V t_min_v = V::broadcast(t_min);
+  TraversalCounts local;
+  count_packet(local, lanes);
+  alignas(64) float t_max_padded[kPacketSize];
+  alignas(64) float t_below[kPacketSize];  // the block test's inclusive bound, below t_max
+  float t_far = 0.0f;
+  for (int l = 0; l < kPacketSize; ++l) {
+    const float t = lanes >> l & 1 ? t_max[l] : 0.0f;
+    t_max_padded[l] = t * kSlabPad;
+    t_below[l] = float_below(t);
+    t_far = std::max(t_far, t_max_padded[l]);
+  }
+  const V t_far_v = V::broadcast(t_far);
+  PacketMask open = lanes, done = 0;
+  PacketStackEntry stack[kStackSize<N>];
+  int sp = 0;
+  std::uint32_t ref = bvh.root, parent = kNoChild, slot = 0;
+  for (;;) {
+    while (!(ref & kLeaf)) {
+      ++local.nodes;
+      const WideNode<N>& node = bvh.nodes[ref];
+      V entry;
+      unsigned mask = pr.test(node, t_min_v, t_far_v, entry);
+      if (mask == 0) goto pop;
+      slot = static_cast<unsigned>(std::countr_zero(mask));
+      parent = ref;
+      ref = node.child[slot];
+      prefetch_ref(bvh, blocks, ref);
+      for (mask &= mask - 1; mask; mask &= mask - 1) {
+        const unsigned i = static_cast<unsigned>(std::countr_zero(mask));
+        stack[sp++] = {node.child[i], 0.0f, parent, i};
+        prefetch_ref(bvh, blocks, node.child[i]);
+      }
+    }
+    {
+      PacketMask rays =
+          parent == kNoChild ? open
+                             : pr.enter(bvh.nodes[parent], int(slot), open, t_min_v, t_max_padded);
+      if (rays) {
+        for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
+          local.blocks += static_cast<unsigned>(std::popcount(rays));
+          done |= test.any(*b, rays, t_min, t_below, on_hit);
+          rays &= ~done;
+          if (!rays || b->last()) break;
+        }
+        open &= ~done;
+        if (!open) break;
+      }
+    }
+  pop:
+    if (sp == 0) break;
+    --sp;
+    ref = stack[sp].ref;
+    parent = stack[sp].parent;
+    slot = stack[sp].slot;
+  }
+  if (counts) *counts += local;
+  return done;
+}
+
+}  // namespace rt2::RT2_ISA

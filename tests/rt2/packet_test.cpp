@@ -1,0 +1,279 @@
+// Packets (rt2/bvh/packet_traverse.h, rt2/geometry/triangle_packet_intersect.h): a packet
+// of up to 16 rays walked together must answer exactly as the single-ray kernel, bit for
+// bit (t, u, v, prim), on every instruction set and with both triangle tests — coherent
+// tiles that take the packet path, and the lanes that must fall back or drop out: mixed
+// direction signs, NaN or zero directions, empty or NaN t_max, partly filled packets,
+// grazing rays, rays through shared edges and vertices, far origins, tiny and huge scales.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "rt2/shapes.h"
+#include "rt2/trace.h"
+#include "tests/rt2/test_util.h"
+
+namespace rt2 {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+bool bitwise_same(const Hit& a, const Hit& b) {
+  return std::memcmp(&a.t, &b.t, sizeof a.t) == 0 && std::memcmp(&a.u, &b.u, sizeof a.u) == 0 &&
+         std::memcmp(&a.v, &b.v, sizeof a.v) == 0 && a.prim == b.prim;
+}
+
+// A closed mesh, a triangle soup, a sphere and a ground plane, scaled by `scale` and moved
+// by `offset`.
+Scene packet_scene(float scale = 1.0f, vec4 offset = vec4(0.0f)) {
+  Mesh soup = test::random_soup(300, 0.4f, 31);
+  Mesh ball = make_icosphere(vec4(-0.4f, 0.1f, 0.0f), 0.5f, 3, 0);
+  for (Mesh* m : {&soup, &ball})
+    for (vec4& p : m->positions) p = p * scale + offset;
+  Scene s = test::geometry_scene({ball, soup},
+                                 {Sphere{vec4(0.5f, 0.3f, 0.2f) * scale + offset, 0.3f * scale}});
+  s.planes.push_back(Plane{vec4(0.0f, 1.0f, 0.0f), -(offset[1] - 1.2f * scale)});
+  s.plane_materials.push_back(0);
+  return s;
+}
+
+// Rays from `eye` through a width x height grid on the square [-half, half]^2 of the plane
+// z = center.z, in 4 x 4 tiles: each tile is one packet (a partly filled one at the right
+// and bottom edges when the grid is not a multiple of 4).
+struct Batch {
+  std::vector<Ray> rays;
+  std::vector<float> t_max;
+  std::vector<std::uint32_t> begin{0};
+  std::size_t packets() const { return begin.size() - 1; }
+  void close_packet() { begin.push_back(static_cast<std::uint32_t>(rays.size())); }
+};
+
+Batch tiles(vec4 eye, vec4 center, float half, int width, int height) {
+  Batch b;
+  for (int ty = 0; ty < height; ty += 4)
+    for (int tx = 0; tx < width; tx += 4) {
+      for (int y = ty; y < std::min(ty + 4, height); ++y)
+        for (int x = tx; x < std::min(tx + 4, width); ++x) {
+          const vec4 target = center + vec4(half * (2.0f * (x + 0.5f) / width - 1.0f),
+                                            half * (1.0f - 2.0f * (y + 0.5f) / height), 0.0f);
+          b.rays.emplace_back(eye, normalize(target - eye));
+          b.t_max.push_back(kInfinity);
+        }
+      b.close_packet();
+    }
+  return b;
+}
+
+// The packet answers against one call of the single-ray kernel per ray, for every runnable
+// instruction set and both tests. Returns the packets walked as packets (summed over runs).
+struct Compared {
+  std::size_t closest_mismatches = 0, occluded_mismatches = 0, hits = 0, occluded = 0;
+  std::uint64_t packets = 0, packet_rays = 0;
+};
+
+Compared compare(const Scene& scene, const Batch& b, const std::string& what) {
+  Compared c;
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    for (bool watertight : {false, true}) {
+      const TraceOptions opt{watertight};
+      const std::size_t n = b.rays.size();
+      std::vector<Hit> single(n), packed(n);
+      std::vector<std::uint8_t> occ_single(n, 7), occ_packed(n, 7);
+      trace_closest(acc, opt, b.rays.data(), b.t_max.data(), n, single.data());
+      trace_occluded(acc, opt, b.rays.data(), b.t_max.data(), n, occ_single.data());
+      TraversalCounts counts;
+      trace_closest_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(), b.packets(),
+                            packed.data(), &counts);
+      trace_occluded_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(),
+                             b.packets(), occ_packed.data(), &counts);
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool same_hit = bitwise_same(single[i], packed[i]);
+        const bool same_occ = occ_single[i] == occ_packed[i];
+        c.closest_mismatches += !same_hit;
+        c.occluded_mismatches += !same_occ;
+        c.hits += single[i].found();
+        c.occluded += occ_single[i];
+        if (!same_hit || !same_occ) {
+          ADD_FAILURE() << what << ": isa " << isa_name(isa) << " watertight " << watertight
+                        << " ray " << i << " single t " << single[i].t << " prim "
+                        << single[i].prim << " occ " << int(occ_single[i]) << ", packet t "
+                        << packed[i].t << " prim " << packed[i].prim << " occ "
+                        << int(occ_packed[i]);
+          return c;
+        }
+      }
+      c.packets += counts.packets;
+      c.packet_rays += counts.packet_rays;
+    }
+  }
+  return c;
+}
+
+TEST(Packets, CoherentTilesWalkAsPacketsAndEqualSingleRaysBitForBit) {
+  const Scene scene = packet_scene();
+  const Batch b = tiles(vec4(0.1f, 0.2f, 4.0f), vec4(0.0f, 0.0f, 0.0f), 1.3f, 62, 46);
+  const Compared c = compare(scene, b, "coherent tiles");
+  EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u);
+  EXPECT_GT(c.hits, b.rays.size());  // most rays hit, on every run
+  // The property under test is the packet walk: most packets must take it.
+  EXPECT_GT(c.packet_rays, c.packets * 8);
+  EXPECT_GT(c.packet_rays, b.rays.size() * 2);
+}
+
+TEST(Packets, ShadowRaysToALightEqualSingleRaysBitForBit) {
+  const Scene scene = packet_scene();
+  const Batch eye = tiles(vec4(0.0f, 0.5f, 4.0f), vec4(0.0f, 0.0f, 0.0f), 1.4f, 48, 48);
+  const Accel acc = Accel::build(scene, BvhConfig{});
+  std::vector<Hit> hits(eye.rays.size());
+  trace_closest(acc, {}, eye.rays.data(), eye.t_max.data(), eye.rays.size(), hits.data());
+  // From each primary hit (nudged off the surface) to a point light, packet by packet of
+  // the primary tiles: the shadow batch of a tile, as the renderer forms it.
+  const vec4 light(2.0f, 3.0f, 2.5f);
+  Batch shadow;
+  for (std::size_t k = 0; k < eye.packets(); ++k) {
+    for (std::uint32_t i = eye.begin[k]; i < eye.begin[k + 1]; ++i) {
+      if (!hits[i].found()) continue;
+      const vec4 p = eye.rays[i].at(hits[i].t * 0.9999f);
+      const vec4 d = light - p;
+      const float len = std::sqrt(float(dot(d, d)));
+      shadow.rays.emplace_back(p, d / len);
+      shadow.t_max.push_back(len);
+    }
+    if (shadow.rays.size() > shadow.begin.back()) shadow.close_packet();
+  }
+  const Compared c = compare(scene, shadow, "shadow rays");
+  EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u);
+  EXPECT_GT(c.occluded, shadow.rays.size() / 10);
+  EXPECT_LT(c.occluded, shadow.rays.size() * 2 * test::runnable_isas().size() - 10);
+  EXPECT_GT(c.packet_rays, c.packets * 4);
+}
+
+// Every kind of lane a packet must refuse, drop or carry: random packets of 1..16 rays mixing
+// coherent rays with mixed-sign, NaN, zero and infinite directions, NaN origins, and t_max of
+// 0, NaN, a finite bound or +inf.
+TEST(Packets, DegenerateLanesAndPartlyFilledPacketsEqualSingleRays) {
+  const Scene scene = packet_scene();
+  const Batch grid = tiles(vec4(0.0f, 0.0f, 4.0f), vec4(0.0f), 1.2f, 64, 64);
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Batch b;
+  std::size_t next = 0;
+  while (next + 16 <= grid.rays.size()) {
+    const int size = 1 + static_cast<int>(rng() % 16);
+    for (int l = 0; l < size; ++l, ++next) {
+      Ray r = grid.rays[next];
+      float t_max = kInfinity;
+      switch (rng() % 12) {
+        case 0: r.dir = test::random_direction(rng); break;  // mixed signs
+        case 1: r.dir[rng() % 3] = kNaN; break;
+        case 2: r.dir = vec4(0.0f); break;
+        case 3: r.dir[rng() % 3] = kInfinity; break;
+        case 4: r.org[rng() % 3] = kNaN; break;
+        case 5: t_max = 0.0f; break;
+        case 6: t_max = kNaN; break;
+        case 7: t_max = 4.0f * u(rng); break;
+        case 8: r.dir[rng() % 2] = 0.0f; r.dir = normalize(r.dir); break;  // axis-parallel
+        default: break;
+      }
+      b.rays.push_back(r);
+      b.t_max.push_back(t_max);
+    }
+    b.close_packet();
+  }
+  const Compared c = compare(scene, b, "degenerate lanes");
+  EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u);
+  EXPECT_GT(c.packets, 0u);  // the coherent majority still walks as packets
+}
+
+// Rays aimed exactly at the vertices and edge midpoints of a closed mesh, in packets: the
+// watertight test must find a hit for every one, as the single-ray kernel does.
+TEST(Packets, RaysThroughSharedEdgesAndVerticesEqualSingleRaysAndHitWatertight) {
+  const Mesh ball = make_icosphere(vec4(0.0f), 1.0f, 2, 0);
+  const Scene scene = test::geometry_scene({ball});
+  const vec4 eye(0.05f, 0.1f, 5.0f);
+  Batch b;
+  auto add = [&](vec4 target) {
+    if (float(target[2]) < 0.5f) return;  // well inside the silhouette seen from the eye
+    b.rays.emplace_back(eye, normalize(target - eye));
+    b.t_max.push_back(kInfinity);
+    if (b.rays.size() - b.begin.back() == 16) b.close_packet();
+  };
+  for (const vec4& p : ball.positions) add(p);
+  for (const auto& f : ball.faces)
+    for (int e = 0; e < 3; ++e)
+      add((ball.positions[f[e]] + ball.positions[f[(e + 1) % 3]]) * 0.5f);
+  if (b.rays.size() > b.begin.back()) b.close_packet();
+  const Compared c = compare(scene, b, "edges and vertices");
+  EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u);
+  EXPECT_GT(c.packets, 0u);
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    std::vector<Hit> hits(b.rays.size());
+    trace_closest_packets(acc, TraceOptions{true}, b.rays.data(), b.t_max.data(), b.begin.data(),
+                          b.packets(), hits.data());
+    std::size_t missed = 0;
+    for (const Hit& h : hits) missed += !h.found();
+    EXPECT_EQ(missed, 0u) << isa_name(isa);
+  }
+}
+
+// Rays that graze the ground plane's height and skim a flat grid of triangles edge-on.
+TEST(Packets, GrazingRaysEqualSingleRays) {
+  Mesh grid;
+  const int n = 12;
+  for (int z = 0; z <= n; ++z)
+    for (int x = 0; x <= n; ++x)
+      grid.positions.push_back(vec4(-1.0f + 2.0f * x / n, 0.0f, -1.0f + 2.0f * z / n));
+  for (int z = 0; z < n; ++z)
+    for (int x = 0; x < n; ++x) {
+      const std::uint32_t a = z * (n + 1) + x, b = a + 1, c = a + n + 1, d = c + 1;
+      grid.faces.push_back({a, c, b});
+      grid.faces.push_back({b, c, d});
+    }
+  grid.face_materials.assign(grid.faces.size(), 0);
+  Scene scene = test::geometry_scene({grid, test::random_soup(100, 0.3f, 5)});
+  Batch b;
+  for (float height : {0.0f, 1e-7f, -1e-7f, 1e-3f}) {
+    const Batch t = tiles(vec4(0.0f, height, 3.0f), vec4(0.0f, height, 0.0f), 1.0f, 16, 4);
+    for (std::size_t k = 0; k < t.packets(); ++k) {
+      for (std::uint32_t i = t.begin[k]; i < t.begin[k + 1]; ++i) {
+        Ray r = t.rays[i];
+        r.dir[1] = height == 0.0f ? 0.0f : r.dir[1];  // exactly in the plane y = 0
+        b.rays.push_back(r);
+        b.t_max.push_back(kInfinity);
+      }
+      b.close_packet();
+    }
+  }
+  const Compared c = compare(scene, b, "grazing");
+  EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u);
+  EXPECT_GT(c.hits, 0u);
+}
+
+// The same view of the scene scaled by 1e-4 and 1e4 and moved 1e5 away from the origin.
+TEST(Packets, TinyHugeAndFarScenesEqualSingleRays) {
+  struct Case {
+    float scale;
+    vec4 offset;
+  };
+  for (const Case& k : {Case{1e-4f, vec4(0.0f)}, Case{1e4f, vec4(0.0f)},
+                        Case{1.0f, vec4(1e5f, -3e4f, 2e5f)}}) {
+    const Scene scene = packet_scene(k.scale, k.offset);
+    const Batch b = tiles(vec4(0.1f, 0.2f, 4.0f) * k.scale + k.offset, k.offset, 1.3f * k.scale,
+                          32, 32);
+    const std::string what = "scale " + std::to_string(k.scale) + " offset " +
+                             std::to_string(float(k.offset[0]));
+    const Compared c = compare(scene, b, what);
+    EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u) << what;
+    EXPECT_GT(c.hits, b.rays.size() / 2) << what;
+    EXPECT_GT(c.packets, 0u) << what;
+  }
+}
+
+}  // namespace
+}  // namespace rt2
