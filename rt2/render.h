@@ -39,6 +39,11 @@ struct RenderSettings {
   // are one batch of rays at each stage (primary, shadow, secondary), small enough to stay
   // in the caches. 1 ... 256; the image does not depend on it.
   int block = 16;
+  // Primary rays are traced in packets of 4 x 4 pixels of one sample, shadow rays in
+  // packets of 16 rays to one light, secondary rays 16 at a time, each packet walking the
+  // BVH together where its rays allow (rt2/bvh/packet_traverse.h); false: every ray alone.
+  // The image does not depend on it.
+  bool packets = true;
 
   // Throws rt2::Error for width/height < 1 or > 65535, subpixels < 1 or > 65536,
   // depth < 0 or > 1'000'000, min_weight NaN or outside [0, 1], passes < 1 or >

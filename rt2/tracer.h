@@ -23,6 +23,7 @@
 // noise, so it was dropped).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -49,12 +50,17 @@ struct ShadowRay {
   vec4 term;  // weight x (Kd (L·N) + Ks (R·V)^n) x light radiance
   float distance;
   std::uint32_t sample;
+  std::uint32_t light;  // index into CompiledScene::lights
 };
 
 // The batches of one thread, reused from block to block (no allocation once grown).
 struct Batches {
   std::vector<PathRay> rays, next;
+  std::vector<std::uint32_t> packet_begin;  // the primary batch's packets (generate)
   std::vector<ShadowRay> shadows;
+  std::vector<float> passed;              // per shadow ray: the light that passes
+  std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
+  std::vector<std::uint32_t> light_begin;
   std::vector<vec4> colors;
 };
 
@@ -129,7 +135,8 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
       const float r_dot_v = dot(2.0f * n_dot_l * s.ns - l, view);  // R = reflect(-L, N)
       if (r_dot_v > 0.0f) term += m.specular * std::pow(r_dot_v, m.shininess);
     }
-    b.shadows.push_back({Ray(origin, l), r.weight * (term * light.radiance()), dist, r.sample});
+    b.shadows.push_back({Ray(origin, l), r.weight * (term * light.radiance()), dist, r.sample,
+                         static_cast<std::uint32_t>(&light - sc.lights.data())});
   }
 }
 
@@ -160,6 +167,109 @@ inline void spawn(const CompiledScene& sc, const RenderSettings& st, const PathR
   }
 }
 
+// Stage 1: the primary rays of samples [s0, s1) of the block's pixels, packet by packet:
+// 4 x 4 pixels (fewer at the block's right and bottom edges) for one sample. A sample's
+// colour is b.colors[((y - y0) bw + x - x0) (s1 - s0) + k - s0] whatever the ray order.
+inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batches& b) {
+  const RenderSettings& st = r.settings();
+  const Camera& cam = r.camera();
+  const auto& offsets = r.offsets();
+  const int samples = s1 - s0, bw = block.x1 - block.x0;
+  b.rays.clear();
+  b.packet_begin.assign(1, 0);
+  for (int gy = block.y0; gy < block.y1; gy += 4)
+    for (int gx = block.x0; gx < block.x1; gx += 4)
+      for (int k = s0; k < s1; ++k) {
+        const SubpixelOffset& o = offsets[k];
+        for (int y = gy; y < std::min(gy + 4, block.y1); ++y)
+          for (int x = gx; x < std::min(gx + 4, block.x1); ++x) {
+            PathRay& pr = b.rays.emplace_back();
+            pr.ray = cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height);
+            pr.weight = 1.0f;
+            pr.sample = static_cast<std::uint32_t>(((y - block.y0) * bw + x - block.x0) * samples +
+                                                   k - s0);
+            pr.depth = 0;
+            pr.kind = RayKind::primary;
+          }
+        b.packet_begin.push_back(static_cast<std::uint32_t>(b.rays.size()));
+      }
+}
+
+// Stages 2 and 3 for rays [begin, end) of b.rays (at most kPacketSize): their closest hits,
+// as one packet or one by one, then each ray shaded in order.
+template <bool Watertight>
+void intersect_and_shade(const CompiledScene& sc, const RenderSettings& st, std::size_t begin,
+                         std::size_t end, Batches& b, RayCounts& counts, TraversalCounts& walk) {
+  Ray rays[kPacketSize];
+  float t_max[kPacketSize];
+  Hit hits[kPacketSize];
+  const int n = static_cast<int>(end - begin);
+  for (int l = 0; l < n; ++l) {
+    rays[l] = b.rays[begin + l].ray;
+    t_max[l] = kInfinity;
+  }
+  if (st.packets) {
+    closest_hit_packet<Watertight>(sc.accel, rays, (PacketMask(1) << n) - 1, 0.0f, t_max, hits,
+                                   &walk);
+  } else {
+    for (int l = 0; l < n; ++l)
+      hits[l] = closest_hit<Watertight>(sc.accel, rays[l], 0.0f, kInfinity, &walk);
+  }
+  for (int l = 0; l < n; ++l) {
+    const PathRay& pr = b.rays[begin + l];
+    counts.reflection += pr.kind == RayKind::reflection;
+    counts.refraction += pr.kind == RayKind::refraction;
+    if (!hits[l].found()) {
+      b.colors[pr.sample] += pr.weight * sc.background;
+      continue;
+    }
+    const SurfacePoint s = surface_at(sc.accel, pr.ray, hits[l], sc.offset_scale);
+    shade(sc, pr, s, b, counts);
+    spawn(sc, st, pr, s, b);
+  }
+}
+
+// Stage 4: b.passed[i] = the light that passes along shadow ray i. With packets, the rays
+// of each light are traced together (rays to one light from neighbouring points are
+// coherent), 16 at a time in batch order.
+template <bool Watertight>
+void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b,
+                   TraversalCounts& walk) {
+  const std::size_t n = b.shadows.size();
+  b.passed.resize(n);
+  if (!st.packets) {
+    for (std::size_t i = 0; i < n; ++i)
+      b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
+                                              b.shadows[i].distance, &walk);
+    return;
+  }
+  // Counting sort by light, stable.
+  b.light_begin.assign(sc.lights.size() + 1, 0);
+  for (const ShadowRay& sr : b.shadows) ++b.light_begin[sr.light + 1];
+  for (std::size_t l = 1; l < b.light_begin.size(); ++l) b.light_begin[l] += b.light_begin[l - 1];
+  b.by_light.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    b.by_light[b.light_begin[b.shadows[i].light]++] = static_cast<std::uint32_t>(i);
+  // light_begin[l] is now the end of light l's run: runs are [end of l - 1, end of l).
+  std::size_t run = 0;
+  for (const std::uint32_t run_end : b.light_begin) {
+    for (; run < run_end; run += kPacketSize) {
+      const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, run_end - run));
+      Ray rays[kPacketSize];
+      float t_max[kPacketSize], passed[kPacketSize];
+      for (int l = 0; l < count; ++l) {
+        const ShadowRay& sr = b.shadows[b.by_light[run + l]];
+        rays[l] = sr.ray;
+        t_max[l] = sr.distance;
+      }
+      transmittance_packet<Watertight>(sc.accel, sc.materials, rays,
+                                       (PacketMask(1) << count) - 1, 0.0f, t_max, passed, &walk);
+      for (int l = 0; l < count; ++l) b.passed[b.by_light[run + l]] = passed[l];
+    }
+    run = run_end;
+  }
+}
+
 // Samples [s0, s1) of the pixels of `block` (at most RenderSettings::block squared), into
 // the film.
 template <bool Watertight>
@@ -167,46 +277,29 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
                   Batches& b, RayCounts& counts) {
   const CompiledScene& sc = r.scene();
   const RenderSettings& st = r.settings();
-  const Camera& cam = r.camera();
-  const auto& offsets = r.offsets();
   const int samples = s1 - s0;
-  const int bw = block.x1 - block.x0;
-  const std::size_t n = std::size_t(bw) * std::size_t(block.y1 - block.y0) * std::size_t(samples);
+  const std::size_t n = std::size_t(block.x1 - block.x0) * std::size_t(block.y1 - block.y0) *
+                        std::size_t(samples);
   b.colors.assign(n, vec4());
-  // 1. generate
-  b.rays.clear();
-  for (int y = block.y0; y < block.y1; ++y)
-    for (int x = block.x0; x < block.x1; ++x)
-      for (int k = s0; k < s1; ++k) {
-        const auto sample = static_cast<std::uint32_t>(b.rays.size());
-        const SubpixelOffset& o = offsets[k];
-        b.rays.push_back({cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height), 1.0f,
-                          sample, 0, RayKind::primary});
-      }
+  generate(r, block, s0, s1, b);  // 1.
   counts.primary += n;
-  while (!b.rays.empty()) {
+  for (bool primary = true; !b.rays.empty(); primary = false) {
     b.next.clear();
     b.shadows.clear();
-    // 2. intersect, 3. shade
-    for (const PathRay& pr : b.rays) {
-      counts.reflection += pr.kind == RayKind::reflection;
-      counts.refraction += pr.kind == RayKind::refraction;
-      TraversalCounts& walk = pr.kind == RayKind::primary ? counts.primary_walk : counts.secondary_walk;
-      const Hit h = closest_hit<Watertight>(sc.accel, pr.ray, 0.0f, kInfinity, &walk);
-      if (!h.found()) {
-        b.colors[pr.sample] += pr.weight * sc.background;
-        continue;
-      }
-      const SurfacePoint s = surface_at(sc.accel, pr.ray, h, sc.offset_scale);
-      shade(sc, pr, s, b, counts);
-      spawn(sc, st, pr, s, b);
+    // 2. intersect, 3. shade: the primary batch in its packets, the others 16 rays at a time
+    if (primary) {
+      for (std::size_t k = 0; k + 1 < b.packet_begin.size(); ++k)
+        intersect_and_shade<Watertight>(sc, st, b.packet_begin[k], b.packet_begin[k + 1], b,
+                                        counts, counts.primary_walk);
+    } else {
+      for (std::size_t i = 0; i < b.rays.size(); i += kPacketSize)
+        intersect_and_shade<Watertight>(sc, st, i, std::min(i + kPacketSize, b.rays.size()), b,
+                                        counts, counts.secondary_walk);
     }
-    // 4. shadows
-    for (const ShadowRay& sr : b.shadows) {
-      const float passed = transmittance<Watertight>(sc.accel, sc.materials, sr.ray, 0.0f,
-                                                     sr.distance, &counts.shadow_walk);
-      if (passed != 0.0f) b.colors[sr.sample] += sr.term * passed;
-    }
+    // 4. shadows, each sample's terms added in batch order
+    trace_shadows<Watertight>(sc, st, b, counts.shadow_walk);
+    for (std::size_t i = 0; i < b.shadows.size(); ++i)
+      if (b.passed[i] != 0.0f) b.colors[b.shadows[i].sample] += b.shadows[i].term * b.passed[i];
     // 5. next depth
     std::swap(b.rays, b.next);
   }

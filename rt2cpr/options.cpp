@@ -95,7 +95,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
-              isa = rt2::isa_name(o.isa), positional_scene;
+              isa = rt2::isa_name(o.isa), packets = "on", positional_scene;
   bool version = false;
 
   app.add_option("scene_file", positional_scene, "the scene, as with --scene")
@@ -121,6 +121,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
                               "the widest this CPU runs)");
   app.add_option("--triangle-test", triangle_test,
                  "fast (the thesis's) | watertight (Woop et al. 2013)");
+  app.add_option("--packets", packets, "on: coherent rays walk the BVH 16 at a time | off: "
+                                       "one by one (the image is the same)");
   app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
   app.add_option("--passes", passes, "render each pixel's samples in this many passes over the "
                                      "image, 1 ... subpixels (progressive)");
@@ -181,6 +183,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
   o.render.min_weight = min_weight;
   o.render.pattern = rt2::parse_pattern(pattern);
   o.isa = rt2::parse_isa(isa);
+  if (packets != "on" && packets != "off")
+    throw rt2::Error("unknown --packets '" + packets + "' (expected on or off)");
+  o.render.packets = packets == "on";
   if (triangle_test != "fast" && triangle_test != "watertight")
     throw rt2::Error("unknown triangle test '" + triangle_test + "' (expected fast or watertight)");
   o.render.watertight = triangle_test == "watertight";

@@ -77,6 +77,7 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
       {"features", rt2::feature_names(compiled.features)},
       {"passes", st.passes},
       {"block", st.block},
+      {"packets", st.packets},
       {"tile", o.schedule.tile},
       {"time_budget_s", o.time_budget},
       {"triangles", accel.tris.size()},
@@ -168,6 +169,13 @@ void Report::print_summary() const {
   const auto [rn, rtr] = per_ray(rays_.secondary_walk, rays_.reflection + rays_.refraction);
   std::printf("BVH nodes / triangles tested per ray: primary %.2f / %.2f, shadow %.2f / %.2f, "
               "secondary %.2f / %.2f\n", pn, pt, sn, st, rn, rtr);
+  const auto in_packets = [](const rt2::TraversalCounts& w, std::uint64_t rays) {
+    return rays ? 100.0 * double(w.packet_rays) / double(rays) : 0.0;
+  };
+  std::printf("rays walked in packets: primary %.1f %%, shadow %.1f %%, secondary %.1f %%\n",
+              in_packets(rays_.primary_walk, rays_.primary),
+              in_packets(rays_.shadow_walk, rays_.shadow),
+              in_packets(rays_.secondary_walk, rays_.reflection + rays_.refraction));
   if (passes_ < j["passes"].get<int>())
     std::printf("time budget: %d of %d passes rendered\n", passes_, j["passes"].get<int>());
   if (nonfinite_ > 0)
@@ -201,7 +209,10 @@ nlohmann::json Report::json() const {
   j["nonfinite_pixels"] = nonfinite_;
   j["passes_rendered"] = passes_;
   const auto walk = [](const rt2::TraversalCounts& w) {
-    return nlohmann::json{{"nodes", w.nodes}, {"triangles", 4 * w.blocks}};
+    return nlohmann::json{{"nodes", w.nodes},
+                          {"triangles", 4 * w.blocks},
+                          {"packets", w.packets},
+                          {"rays_in_packets", w.packet_rays}};
   };
   j["bvh_walks"] = {{"primary", walk(rays_.primary_walk)},
                     {"shadow", walk(rays_.shadow_walk)},

@@ -21,11 +21,14 @@
 // ray whose exit is negative fails its own test. Compared as integers (NodeRay<N, true>),
 // as every ray's own test compares them, the packet enters a box whenever a ray does.
 //
-// At a leaf, each ray is tested against the leaf's box (from its parent) with exactly the
-// arithmetic of its own walk, SIMD over rays, and only the rays that enter it test the
-// leaf's triangle blocks, each with its own triangle test. So every ray finds the hit its
-// own walk finds, bit for bit: the closest one (ties to the smaller index, as there), or
-// for any-hit the same answer. The closest-hit walk visits children nearest first by the
+// The frustum only filters: each child it passes is then tested ray by ray, with exactly
+// the arithmetic of each ray's own walk (SIMD over rays), and the walk carries the rays
+// that entered each subtree. A subtree no ray enters is dropped, so the packet never
+// visits more nodes than its rays' own walks together (with origins spread over a surface,
+// shadow rays make loose frusta), and at a leaf only the rays that entered test its
+// triangle blocks, each with its own triangle test. So every ray finds the hit its own
+// walk finds, bit for bit: the closest one (ties to the smaller index, as there), or for
+// any-hit the same answer. The closest-hit walk visits children nearest first by the
 // frustum's entry distance and drops a subtree when it lies beyond every ray's hit.
 //
 // Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
@@ -142,13 +145,12 @@ struct PacketRays {
   }
 };
 
-// A pending subtree of a packet walk: its entry distance (closest hit only), and the node
-// and slot it hangs from, for the rays' own test of a leaf's box.
+// A pending subtree of a packet walk: the rays that enter its box (each by its own test),
+// and their entry distance's lower bound (closest hit only).
 struct PacketStackEntry {
   std::uint32_t ref;
   float t;
-  std::uint32_t parent;
-  std::uint32_t slot;
+  PacketMask rays;
 };
 
 // Walks counted as packets, and the rays they carried.
@@ -180,7 +182,8 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
   }
   PacketStackEntry stack[kStackSize<N>];
   int sp = 0;
-  std::uint32_t ref = bvh.root, parent = kNoChild, slot = 0;
+  std::uint32_t ref = bvh.root;
+  PacketMask rays = lanes;  // the rays that enter ref's box
   alignas(64) float entry_t[N];
   for (;;) {
     while (!(ref & kLeaf)) {
@@ -188,44 +191,37 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
       unsigned mask = pr.test(node, t_min_v, V::broadcast(t_far), entry);
-      if (mask == 0) goto pop;
       entry.store(entry_t);
-      {
-        // Nearest first: the others go on the stack, farthest deepest.
-        PacketStackEntry hit[N];
-        int k = 0;
-        for (; mask; mask &= mask - 1) {
-          const unsigned i = static_cast<unsigned>(std::countr_zero(mask));
-          hit[k++] = {node.child[i], entry_t[i], ref, i};
-        }
-        for (int a = 1; a < k; ++a)
-          for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
-        for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
-        for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
-        ref = hit[k - 1].ref;
-        parent = hit[k - 1].parent;
-        slot = hit[k - 1].slot;
+      // The children some ray enters, nearest first; the others go on the stack, farthest
+      // deepest.
+      PacketStackEntry hit[N];
+      int k = 0;
+      for (; mask; mask &= mask - 1) {
+        const int i = std::countr_zero(mask);
+        const PacketMask in = pr.enter(node, i, rays, t_min_v, t_max_padded);
+        if (in) hit[k++] = {node.child[i], entry_t[i], in};
       }
+      if (k == 0) goto pop;
+      for (int a = 1; a < k; ++a)
+        for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
+      for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
+      for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
+      ref = hit[k - 1].ref;
+      rays = hit[k - 1].rays;
     }
-    {
-      // A leaf: the rays that enter its box (all of them when the tree is one leaf).
-      const PacketMask rays =
-          parent == kNoChild ? lanes
-                             : pr.enter(bvh.nodes[parent], int(slot), lanes, t_min_v, t_max_padded);
-      if (rays) {
-        for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-          local.blocks += static_cast<unsigned>(std::popcount(rays));
-          test.nearest(*b, rays, t_min, hits, t_best);
-          if (b->last()) break;
-        }
-        t_far = 0.0f;
-        for (PacketMask m = rays; m; m &= m - 1) {
-          const int l = std::countr_zero(m);
-          t_max_padded[l] = t_best[l] * kSlabPad;
-        }
-        for (PacketMask m = lanes; m; m &= m - 1) t_far = std::max(t_far, t_max_padded[std::countr_zero(m)]);
-      }
+    // A leaf.
+    for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
+      local.blocks += static_cast<unsigned>(std::popcount(rays));
+      test.nearest(*b, rays, t_min, hits, t_best);
+      if (b->last()) break;
     }
+    for (PacketMask m = rays; m; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      t_max_padded[l] = t_best[l] * kSlabPad;
+    }
+    t_far = 0.0f;
+    for (PacketMask m = lanes; m; m &= m - 1)
+      t_far = std::max(t_far, t_max_padded[std::countr_zero(m)]);
   pop:
     for (;;) {
       if (sp == 0) {
@@ -235,8 +231,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
       const PacketStackEntry& e = stack[--sp];
       if (e.t <= t_far) {
         ref = e.ref;
-        parent = e.parent;
-        slot = e.slot;
+        rays = e.rays;
         break;
       }
     }
@@ -265,49 +260,48 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
     t_far = std::max(t_far, t_max_padded[l]);
   }
   const V t_far_v = V::broadcast(t_far);
-  PacketMask open = lanes, done = 0;
+  PacketMask open = lanes, done = 0;  // open: the rays not yet blocked
   PacketStackEntry stack[kStackSize<N>];
   int sp = 0;
-  std::uint32_t ref = bvh.root, parent = kNoChild, slot = 0;
+  std::uint32_t ref = bvh.root;
+  PacketMask rays = lanes;  // the open rays that enter ref's box
   for (;;) {
     while (!(ref & kLeaf)) {
       ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
       unsigned mask = pr.test(node, t_min_v, t_far_v, entry);
-      if (mask == 0) goto pop;
-      slot = static_cast<unsigned>(std::countr_zero(mask));
-      parent = ref;
-      ref = node.child[slot];
-      prefetch_ref(bvh, blocks, ref);
-      for (mask &= mask - 1; mask; mask &= mask - 1) {
-        const unsigned i = static_cast<unsigned>(std::countr_zero(mask));
-        stack[sp++] = {node.child[i], 0.0f, parent, i};
-        prefetch_ref(bvh, blocks, node.child[i]);
+      PacketMask next = 0;
+      for (; mask; mask &= mask - 1) {
+        const int i = std::countr_zero(mask);
+        const PacketMask in = pr.enter(node, i, rays, t_min_v, t_max_padded);
+        if (!in) continue;
+        if (next) stack[sp++] = {ref, 0.0f, next};  // the previous child (ref reused below)
+        ref = node.child[i];  // tentatively the child walked next
+        next = in;
+        prefetch_ref(bvh, blocks, ref);
       }
+      if (!next) goto pop;
+      rays = next;
     }
-    {
-      PacketMask rays =
-          parent == kNoChild ? open
-                             : pr.enter(bvh.nodes[parent], int(slot), open, t_min_v, t_max_padded);
-      if (rays) {
-        for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-          local.blocks += static_cast<unsigned>(std::popcount(rays));
-          done |= test.any(*b, rays, t_min, t_below, on_hit);
-          rays &= ~done;
-          if (!rays || b->last()) break;
-        }
-        open &= ~done;
-        if (!open) break;
-      }
+    for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
+      local.blocks += static_cast<unsigned>(std::popcount(rays));
+      done |= test.any(*b, rays, t_min, t_below, on_hit);
+      rays &= ~done;
+      if (!rays || b->last()) break;
     }
+    open &= ~done;
+    if (!open) break;
   pop:
-    if (sp == 0) break;
-    --sp;
-    ref = stack[sp].ref;
-    parent = stack[sp].parent;
-    slot = stack[sp].slot;
+    for (;;) {
+      if (sp == 0) goto out;
+      --sp;
+      ref = stack[sp].ref;
+      rays = stack[sp].rays & open;
+      if (rays) break;
+    }
   }
+out:
   if (counts) *counts += local;
   return done;
 }
