@@ -5,6 +5,7 @@
 #pragma once
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
 #include "mlib/simd.h"  // MLIB_INLINE
@@ -52,6 +53,7 @@ MLIB_INLINE vfloat4 max(vfloat4 a, vfloat4 b) { return detail::lanes([&](int i) 
 MLIB_INLINE vfloat4 abs(vfloat4 a) {
   return detail::lanes([&](int i) { return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) & 0x7fffffffu); });
 }
+MLIB_INLINE vfloat4 sqrt(vfloat4 a) { return detail::lanes([&](int i) { return std::sqrt(a.v[i]); }); }
 MLIB_INLINE vfloat4 xor_sign(vfloat4 a, vfloat4 s) {
   return detail::lanes([&](int i) {
     return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) ^

@@ -38,6 +38,7 @@ MLIB_INLINE vfloat4 operator/(vfloat4 a, vfloat4 b) { return {_mm_div_ps(a.v, b.
 MLIB_INLINE vfloat4 min(vfloat4 a, vfloat4 b) { return {_mm_min_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat4 max(vfloat4 a, vfloat4 b) { return {_mm_max_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat4 abs(vfloat4 a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
+MLIB_INLINE vfloat4 sqrt(vfloat4 a) { return {_mm_sqrt_ps(a.v)}; }  // correctly rounded
 // The sign bit of each lane of `a` flipped where `s` is negative (or -0): a * sign(s)
 // without a multiply.
 MLIB_INLINE vfloat4 xor_sign(vfloat4 a, vfloat4 s) {

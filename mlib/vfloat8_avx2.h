@@ -35,6 +35,7 @@ MLIB_INLINE vfloat8 operator/(vfloat8 a, vfloat8 b) { return {_mm256_div_ps(a.v,
 MLIB_INLINE vfloat8 min(vfloat8 a, vfloat8 b) { return {_mm256_min_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat8 max(vfloat8 a, vfloat8 b) { return {_mm256_max_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat8 abs(vfloat8 a) { return {_mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.v)}; }
+MLIB_INLINE vfloat8 sqrt(vfloat8 a) { return {_mm256_sqrt_ps(a.v)}; }  // correctly rounded
 MLIB_INLINE vfloat8 xor_sign(vfloat8 a, vfloat8 s) {
   return {_mm256_xor_ps(a.v, _mm256_and_ps(s.v, _mm256_set1_ps(-0.0f)))};
 }

@@ -48,6 +48,26 @@ void trace_occluded_packets(const Accel& acc, const Ray* rays, const float* t_ma
   }
 }
 
+template <bool Watertight>
+void trace_transmittance(const Accel& acc, const std::vector<Material>& materials,
+                         const Ray* rays, const float* t_max, std::size_t n, float* passed,
+                         TraversalCounts* counts) {
+  for (std::size_t i = 0; i < n; ++i)
+    passed[i] = transmittance<Watertight>(acc, materials, rays[i], 0.0f, t_max[i], counts);
+}
+
+template <bool Watertight>
+void trace_transmittance_packets(const Accel& acc, const std::vector<Material>& materials,
+                                 const Ray* rays, const float* t_max,
+                                 const std::uint32_t* packet_begin, std::size_t packets,
+                                 float* passed, TraversalCounts* counts) {
+  for (std::size_t k = 0; k < packets; ++k) {
+    const std::uint32_t b = packet_begin[k], n = packet_begin[k + 1] - b;
+    transmittance_packet<Watertight>(acc, materials, rays + b, (1u << n) - 1, 0.0f, t_max + b,
+                                     passed + b, counts);
+  }
+}
+
 }  // namespace
 
 const IsaKernels& kernels() {
@@ -58,6 +78,8 @@ const IsaKernels& kernels() {
       {&trace_occluded<false>, &trace_occluded<true>},
       {&trace_closest_packets<false>, &trace_closest_packets<true>},
       {&trace_occluded_packets<false>, &trace_occluded_packets<true>},
+      {&trace_transmittance<false>, &trace_transmittance<true>},
+      {&trace_transmittance_packets<false>, &trace_transmittance_packets<true>},
   };
   return table;
 }

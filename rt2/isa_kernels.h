@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "rt2/isa.h"
 #include "rt2/ray.h"
@@ -13,6 +14,7 @@
 namespace rt2 {
 
 struct Accel;
+struct Material;
 class Film;
 class Renderer;
 struct RayCounts;
@@ -29,6 +31,12 @@ struct IsaKernels {
   using TraceOccluded = void (*)(const Accel&, const Ray* rays, const float* t_max,
                                  std::size_t n, std::uint8_t* occluded, TraversalCounts* counts);
 
+  // passed[i] = the share of light that passes along rays[i] in (0, t_max[i]) through the
+  // surfaces' transparencies (rt2/query.h, transmittance).
+  using TraceTransmittance = void (*)(const Accel&, const std::vector<Material>&,
+                                      const Ray* rays, const float* t_max, std::size_t n,
+                                      float* passed, TraversalCounts* counts);
+
   // The same over packets of at most 16 consecutive rays: packet k is rays
   // [packet_begin[k], packet_begin[k + 1]) (rt2/trace.h).
   using TraceClosestPackets = void (*)(const Accel&, const Ray* rays, const float* t_max,
@@ -37,6 +45,11 @@ struct IsaKernels {
   using TraceOccludedPackets = void (*)(const Accel&, const Ray* rays, const float* t_max,
                                         const std::uint32_t* packet_begin, std::size_t packets,
                                         std::uint8_t* occluded, TraversalCounts* counts);
+  using TraceTransmittancePackets = void (*)(const Accel&, const std::vector<Material>&,
+                                             const Ray* rays, const float* t_max,
+                                             const std::uint32_t* packet_begin,
+                                             std::size_t packets, float* passed,
+                                             TraversalCounts* counts);
 
   Isa isa;
   // Each indexed by the triangle test: [0] the fast one, [1] the watertight one.
@@ -45,6 +58,8 @@ struct IsaKernels {
   TraceOccluded trace_occluded[2];
   TraceClosestPackets trace_closest_packets[2];
   TraceOccludedPackets trace_occluded_packets[2];
+  TraceTransmittance trace_transmittance[2];
+  TraceTransmittancePackets trace_transmittance_packets[2];
 };
 
 // The table of `isa`, which must be one of built_isas().

@@ -16,6 +16,7 @@
 #include "rt2/bvh/packet_traverse.h"
 #include "rt2/bvh/traverse.h"
 #include "rt2/bvh/wide_traverse.h"
+#include "rt2/geometry/plane_sphere_packet_intersect.h"
 
 namespace rt2::RT2_ISA {
 
@@ -121,10 +122,89 @@ inline PacketMask finite_lanes(const Ray* rays, PacketMask lanes) {
   return lanes;
 }
 
+// Rays c ... c + N - 1 of a loaded packet, N = the ISA's SIMD width.
+inline RayLanes<mlib::vfloat<kWidth>> ray_lanes(const PacketRays<kWidth>& pr, int c) {
+  using V = mlib::vfloat<kWidth>;
+  RayLanes<V> r;
+  for (int a = 0; a < 3; ++a) {
+    r.o[a] = V::load(pr.org[a] + c);
+    r.d[a] = V::load(pr.dir[a] + c);
+  }
+  return r;
+}
+
+// Whether the spheres' tree is one leaf (or empty): then a packet tests its spheres in
+// SIMD over rays, in the order of the one-ray walk; otherwise ray by ray.
+inline bool spheres_in_one_leaf(const Accel& acc) {
+  return acc.spheres.empty() || acc.sphere_bvh.nodes[0].is_leaf();
+}
+
+// closest_plane_or_sphere for each ray of `lanes` of a packet loaded into pr (hits[l].t is
+// the bound on entry), bit for bit, N rays at a time.
+inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kWidth>& pr,
+                                           const Ray* rays, PacketMask lanes, float t_min,
+                                           Hit* hits) {
+  if (!spheres_in_one_leaf(acc)) {
+    for (PacketMask m = lanes; m; m &= m - 1)
+      closest_plane_or_sphere(acc, rays[std::countr_zero(m)], t_min, hits[std::countr_zero(m)]);
+    return;
+  }
+  using V = mlib::vfloat<kWidth>;
+  const V t_min_v = V::broadcast(t_min);
+  const std::uint32_t first_sphere = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].offset;
+  const std::uint32_t spheres = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].count;
+  for (int c = 0; c < kPacketSize; c += kWidth) {
+    const unsigned chunk = lanes >> c & ((1u << kWidth) - 1);
+    if (!chunk) continue;
+    const RayLanes<V> r = ray_lanes(pr, c);
+    alignas(64) float best[kWidth];
+    for (int i = 0; i < kWidth; ++i) best[i] = hits[c + i].t;
+    V t_best = V::load(best);
+    for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
+      const V t = plane_t(acc.planes[i], r);
+      const auto hit = (t > t_min_v) & (t < t_best);
+      t_best = select(hit, t, t_best);
+      for (unsigned m = mlib::bits(hit) & chunk; m; m &= m - 1)
+        hits[c + std::countr_zero(m)].prim = kPlaneTag | i;
+    }
+    for (std::uint32_t i = first_sphere; i < first_sphere + spheres; ++i) {
+      const Sphere& sp = acc.spheres[i];
+      const SphereRoots<V> roots = sphere_roots(sp, r);
+      const auto near_in = (roots.lo > t_min_v) & (roots.lo < t_best);
+      const auto far_in = (roots.hi > t_min_v) & (roots.hi < t_best);
+      const auto hit = near_in | far_in;
+      const unsigned m_hit = mlib::bits(hit) & roots.real & ~roots.doubled & chunk;
+      const unsigned m_doubled = roots.doubled & chunk;
+      if (!(m_hit | m_doubled)) continue;
+      const V t = select(near_in, roots.lo, roots.hi);
+      alignas(64) float ts[kWidth];
+      t.store(ts);
+      t_best.store(best);
+      for (unsigned m = m_hit; m; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        best[l] = ts[l];
+        hits[c + l].prim = kSphereTag | i;
+      }
+      for (unsigned m = m_doubled; m; m &= m - 1) {  // the one-ray test's double branch
+        const int l = std::countr_zero(m);
+        float t1;
+        if (intersect(sp, rays[c + l], t_min, best[l], t1)) {
+          best[l] = t1;
+          hits[c + l].prim = kSphereTag | i;
+        }
+      }
+      t_best = V::load(best);
+    }
+    t_best.store(best);
+    for (unsigned m = chunk; m; m &= m - 1) hits[c + std::countr_zero(m)].t = best[std::countr_zero(m)];
+  }
+}
+
 // closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
-// t_max[l]) for the lanes l of `lanes` (bit for bit the same), the triangles walked as one
-// packet when the rays allow it (packet_traverse.h). rays, t_max and hits have
-// kPacketSize entries; lanes not in `lanes` are left alone.
+// t_max[l]) for the lanes l of `lanes` (bit for bit the same), planes and spheres tested
+// N rays at a time, the triangles walked as one packet when the rays allow it
+// (packet_traverse.h). rays, t_max and hits have kPacketSize entries; lanes not in `lanes`
+// are left alone.
 template <bool Watertight>
 inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
                                const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
@@ -132,14 +212,15 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
   for (PacketMask m = lanes; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     hits[l] = Hit{};
-    if (!(finite >> l & 1)) continue;
-    hits[l].t = t_max[l];
-    closest_plane_or_sphere(acc, rays[l], t_min, hits[l]);
+    if (finite >> l & 1) hits[l].t = t_max[l];
   }
-  const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
-  if (finite && bvh.root != kNoChild) {
+  if (finite) {
     PacketRays<kWidth> pr;
-    if (std::popcount(finite) >= kMinPacketRays && pr.make(rays, finite)) {
+    pr.load(rays, finite);
+    closest_plane_or_sphere_packet(acc, pr, rays, finite, t_min, hits);
+    const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
+    if (bvh.root == kNoChild) {
+    } else if (std::popcount(finite) >= kMinPacketRays && pr.make_frustum()) {
       const PacketTestFor<Watertight> pt(pr, rays, finite);
       closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), pr, pt.test, finite, t_min, hits,
                                       counts);
@@ -298,47 +379,110 @@ inline float transmittance(const Accel& acc, const std::vector<Material>& materi
   return c.transmittance();
 }
 
+// cross_planes_and_spheres for each ray of `lanes` of a packet loaded into pr, N rays at a
+// time, each ray's crossings in the one-ray order; returns the rays an opaque one blocks.
+inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
+                                                  const std::vector<Material>& materials,
+                                                  const PacketRays<kWidth>& pr, const Ray* rays,
+                                                  PacketMask lanes, float t_min,
+                                                  const float* t_max, Crossings* c) {
+  PacketMask blocked = 0;
+  if (!spheres_in_one_leaf(acc)) {
+    for (PacketMask m = lanes; m; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      if (cross_planes_and_spheres(acc, materials, rays[l], t_min, t_max[l], c[l]))
+        blocked |= PacketMask(1) << l;
+    }
+    return blocked;
+  }
+  using V = mlib::vfloat<kWidth>;
+  const V t_min_v = V::broadcast(t_min);
+  const std::uint32_t first_sphere = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].offset;
+  const std::uint32_t spheres = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].count;
+  for (int k = 0; k < kPacketSize; k += kWidth) {
+    unsigned open = lanes >> k & ((1u << kWidth) - 1);
+    if (!open) continue;
+    const RayLanes<V> r = ray_lanes(pr, k);
+    alignas(64) float bound[kWidth];
+    for (int i = 0; i < kWidth; ++i) bound[i] = t_max[k + i];
+    const V t_max_v = V::load(bound);
+    const auto cross = [&](int l, float kt) {  // lane l of this chunk crosses a surface
+      if (c[k + l].cross(kt)) open &= ~(1u << l);
+    };
+    for (std::uint32_t i = 0; i < acc.planes.size() && open; ++i) {
+      const unsigned m = inside(plane_t(acc.planes[i], r), t_min_v, t_max_v) & open;
+      if (!m) continue;
+      const float kt = materials[acc.plane_materials[i]].transparency;
+      for (unsigned b = m; b; b &= b - 1) cross(std::countr_zero(b), kt);
+    }
+    for (std::uint32_t i = first_sphere; i < first_sphere + spheres && open; ++i) {
+      const Sphere& sp = acc.spheres[i];
+      const SphereRoots<V> roots = sphere_roots(sp, r);
+      const unsigned usable = roots.real & ~roots.doubled & open;
+      const unsigned near_in = inside(roots.lo, t_min_v, t_max_v) & usable;
+      const unsigned far_in = inside(roots.hi, t_min_v, t_max_v) & usable;
+      const unsigned doubled = roots.doubled & open;
+      if (!(near_in | far_in | doubled)) continue;
+      const float kt = materials[acc.sphere_materials[i]].transparency;
+      // The one-ray order: the first root in range, then the far root when it lies beyond
+      // it (and before t_max).
+      const unsigned far_beyond = mlib::bits(roots.hi > roots.lo) & far_in & near_in;
+      for (unsigned b = near_in | far_in; b; b &= b - 1) {
+        const int l = std::countr_zero(b);
+        cross(l, kt);
+        if (far_beyond >> l & 1 && open >> l & 1) cross(l, kt);
+      }
+      for (unsigned b = doubled; b; b &= b - 1) {  // the one-ray test's double branch
+        const int l = std::countr_zero(b);
+        float t, t2;
+        if (!intersect(sp, rays[k + l], t_min, t_max[k + l], t)) continue;
+        cross(l, kt);
+        if (open >> l & 1 && intersect(sp, rays[k + l], t, t_max[k + l], t2)) cross(l, kt);
+      }
+    }
+    blocked |= PacketMask((lanes >> k & ((1u << kWidth) - 1)) & ~open) << k;
+  }
+  return blocked;
+}
+
 // transmittance for each ray of a packet: passed[l] for the lanes l of `lanes`, bit for bit
-// what transmittance gives, the triangles walked as one packet when the rays allow it.
+// what transmittance gives, planes and spheres tested N rays at a time, the triangles
+// walked as one packet when the rays allow it.
 template <bool Watertight>
 inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
                                  const Ray* rays, PacketMask lanes, float t_min,
                                  const float* t_max, float* passed,
                                  TraversalCounts* counts = nullptr) {
   Crossings c[kPacketSize];
-  PacketMask open = finite_lanes(rays, lanes), blocked = 0;
-  for (PacketMask m = lanes & ~open; m; m &= m - 1) passed[std::countr_zero(m)] = 1.0f;
-  for (PacketMask m = open; m; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    if (cross_planes_and_spheres(acc, materials, rays[l], t_min, t_max[l], c[l]))
-      blocked |= 1u << l;
-  }
-  open &= ~blocked;
+  const PacketMask finite = finite_lanes(rays, lanes);
+  for (PacketMask m = lanes & ~finite; m; m &= m - 1) passed[std::countr_zero(m)] = 1.0f;
+  if (!finite) return;
+  PacketRays<kWidth> pr;
+  pr.load(rays, finite);
+  PacketMask blocked = cross_planes_and_spheres_packet(acc, materials, pr, rays, finite, t_min,
+                                                       t_max, c);
+  const PacketMask open = finite & ~blocked;
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
-  if (open && bvh.root != kNoChild) {
-    PacketRays<kWidth> pr;
-    if (std::popcount(open) >= kMinPacketRays && pr.make(rays, open)) {
-      const PacketTestFor<Watertight> pt(pr, rays, open);
-      blocked |= any_triangle_packet<kWidth>(
-          bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
-          [&](int l, std::uint32_t prim, float) {
-            return c[l].cross(materials[acc.tri_materials[prim]].transparency);
-          },
-          counts);
-    } else {
-      for (PacketMask m = open; m; m &= m - 1) {
-        const int l = std::countr_zero(m);
-        if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l],
-                                 TriangleTest<Watertight>(rays[l]), t_min, t_max[l],
-                                 [&](std::uint32_t prim, float) {
-                                   return c[l].cross(materials[acc.tri_materials[prim]].transparency);
-                                 },
-                                 counts))
-          blocked |= 1u << l;
-      }
+  const auto cross_triangle = [&](int l, std::uint32_t prim) {
+    return c[l].cross(materials[acc.tri_materials[prim]].transparency);
+  };
+  if (!open || bvh.root == kNoChild) {
+  } else if (std::popcount(open) >= kMinPacketRays && pr.make_frustum()) {
+    const PacketTestFor<Watertight> pt(pr, rays, open);
+    blocked |= any_triangle_packet<kWidth>(
+        bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
+        [&](int l, std::uint32_t prim, float) { return cross_triangle(l, prim); }, counts);
+  } else {
+    for (PacketMask m = open; m; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l], TriangleTest<Watertight>(rays[l]),
+                               t_min, t_max[l],
+                               [&](std::uint32_t prim, float) { return cross_triangle(l, prim); },
+                               counts))
+        blocked |= PacketMask(1) << l;
     }
   }
-  for (PacketMask m = lanes & finite_lanes(rays, lanes); m; m &= m - 1) {
+  for (PacketMask m = finite; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     passed[l] = blocked >> l & 1 ? 0.0f : c[l].transmittance();
   }

@@ -31,6 +31,21 @@ void trace_occluded_packets(const Accel& acc, const TraceOptions& options, const
       acc, rays, t_max, packet_begin, packets, occluded, counts);
 }
 
+void trace_transmittance(const Accel& acc, const std::vector<Material>& materials,
+                         const TraceOptions& options, const Ray* rays, const float* t_max,
+                         std::size_t n, float* passed, TraversalCounts* counts) {
+  isa_kernels(acc.isa).trace_transmittance[options.watertight](acc, materials, rays, t_max, n,
+                                                               passed, counts);
+}
+
+void trace_transmittance_packets(const Accel& acc, const std::vector<Material>& materials,
+                                 const TraceOptions& options, const Ray* rays,
+                                 const float* t_max, const std::uint32_t* packet_begin,
+                                 std::size_t packets, float* passed, TraversalCounts* counts) {
+  isa_kernels(acc.isa).trace_transmittance_packets[options.watertight](
+      acc, materials, rays, t_max, packet_begin, packets, passed, counts);
+}
+
 Hit trace_closest(const Accel& acc, const Ray& ray, float t_max, const TraceOptions& options) {
   Hit h;
   trace_closest(acc, options, &ray, &t_max, 1, &h);

@@ -8,8 +8,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/material.h"
 
 namespace rt2 {
 
@@ -29,10 +31,18 @@ void trace_occluded(const Accel& acc, const TraceOptions& options, const Ray* ra
                     const float* t_max, std::size_t n, std::uint8_t* occluded,
                     TraversalCounts* counts = nullptr);
 
+// passed[i] = the share of light that passes along rays[i] in (0, t_max[i]): 1 when nothing
+// is in the way, 0 behind an opaque surface, else the product of the transparencies Kt
+// (materials[...].transparency) of every surface crossed (the renderer's shadow rays).
+void trace_transmittance(const Accel& acc, const std::vector<Material>& materials,
+                         const TraceOptions& options, const Ray* rays, const float* t_max,
+                         std::size_t n, float* passed, TraversalCounts* counts = nullptr);
+
 // The same for packets of coherent rays (a 4 x 4 tile of primary rays, their shadow rays):
 // packet k is rays [packet_begin[k], packet_begin[k + 1]), at most 16 consecutive rays,
 // walked together (rt2/bvh/packet_traverse.h) when their directions allow it, else one by
-// one. The answers are those of trace_closest / trace_occluded, bit for bit.
+// one. The answers are those of trace_closest / trace_occluded / trace_transmittance, bit
+// for bit.
 void trace_closest_packets(const Accel& acc, const TraceOptions& options, const Ray* rays,
                            const float* t_max, const std::uint32_t* packet_begin,
                            std::size_t packets, Hit* hits, TraversalCounts* counts = nullptr);
@@ -40,6 +50,11 @@ void trace_occluded_packets(const Accel& acc, const TraceOptions& options, const
                             const float* t_max, const std::uint32_t* packet_begin,
                             std::size_t packets, std::uint8_t* occluded,
                             TraversalCounts* counts = nullptr);
+void trace_transmittance_packets(const Accel& acc, const std::vector<Material>& materials,
+                                 const TraceOptions& options, const Ray* rays,
+                                 const float* t_max, const std::uint32_t* packet_begin,
+                                 std::size_t packets, float* passed,
+                                 TraversalCounts* counts = nullptr);
 
 // One ray: the closest hit in (0, t_max), and whether anything lies in (0, t_max).
 Hit trace_closest(const Accel& acc, const Ray& ray, float t_max = kInfinity,

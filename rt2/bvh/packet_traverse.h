@@ -59,20 +59,24 @@ struct PacketRays {
   // distance, (bounds[far] - o_far) * i_far at least every exit (see the file comment).
   V o_near[3], o_far[3], i_near[3], i_far[3];
 
-  // Sets the packet up from rays[l] for the lanes l of `lanes` (at least one). Returns false
-  // when the rays cannot walk together: their directions' signs differ on an axis, or a
-  // component of a direction is zero (an infinite reciprocal).
-  bool make(const Ray* rays, PacketMask lanes) {
+  // Loads rays[l] for the lanes l of `lanes` (at least one) into org and dir. Lanes without
+  // a ray take the first ray's values: their bits are masked off later, and the frustum's
+  // bounds stay those of the rays.
+  void load(const Ray* rays, PacketMask lanes) {
     const int first = std::countr_zero(lanes);
     for (int l = 0; l < kPacketSize; ++l) {
-      // Lanes without a ray take the first ray's values: their bits are masked off later,
-      // and the frustum's bounds stay those of the rays.
       const Ray& r = rays[lanes >> l & 1 ? l : first];
       for (int a = 0; a < 3; ++a) {
         org[a][l] = r.org[a];
         dir[a][l] = r.dir[a];
       }
     }
+  }
+
+  // After load: the reciprocals and the frustum. Returns false when the rays cannot walk
+  // together: their directions' signs differ on an axis, or a component of a direction is
+  // zero (an infinite reciprocal).
+  bool make_frustum() {
     constexpr PacketMask kAll = (PacketMask(1) << kPacketSize) - 1;
     const V one = V::broadcast(1.0f), pad = V::broadcast(kSlabPad), zero = V::broadcast(0.0f),
             inf = V::broadcast(kInfinity), minus_inf = V::broadcast(-kInfinity);
@@ -103,6 +107,12 @@ struct PacketRays {
       i_far[a] = negative ? mlib::reduce_min(f_lo) : mlib::reduce_max(f_hi);   // largest |.|
     }
     return true;
+  }
+
+  // load and make_frustum.
+  bool make(const Ray* rays, PacketMask lanes) {
+    load(rays, lanes);
+    return make_frustum();
   }
 
   // The frustum against a node's N child boxes: bit i set when some ray may enter child i
