@@ -27,22 +27,17 @@ template <bool Watertight>
 using TriangleTest = std::conditional_t<Watertight, WatertightTriangleTest, FastTriangleTest>;
 
 // The leaf test of a packet walk (triangle_packet_intersect.h), set up for the rays of
-// `lanes`: the fast test one triangle against N rays at a time, the watertight test ray
-// by ray.
+// `lanes` of a packet loaded into pr.
 template <bool Watertight>
 struct PacketTestFor {
   FastPacketTest<kWidth> test;
-  PacketTestFor(const PacketRays<kWidth>& pr, const Ray*, PacketMask) : test{pr.org, pr.dir} {}
+  PacketTestFor(const PacketRays<kWidth>& pr, const Ray*, PacketMask) : test{{pr.org, pr.dir}} {}
 };
 template <>
 struct PacketTestFor<true> {
-  RayByRayPacketTest<WatertightTriangleTest> test;
-  PacketTestFor(const PacketRays<kWidth>&, const Ray* rays, PacketMask lanes) {
-    for (; lanes; lanes &= lanes - 1) {
-      const int l = std::countr_zero(lanes);
-      test.tests[l] = WatertightTriangleTest(rays[l]);
-    }
-  }
+  WatertightPacketTest<kWidth> test;
+  PacketTestFor(const PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes)
+      : test(pr.org, rays, lanes) {}
 };
 
 // Whether any coordinate of the ray is NaN: such a ray hits nothing (and would otherwise

@@ -165,9 +165,65 @@ struct FastTriangleTest {
   }
 };
 
-// The watertight test of Woop, Benthin and Wald (JCGT 2013), four triangles at a time: the
-// same shear (WatertightRay) and edge functions as intersect_watertight, with its double
-// precision re-evaluation for a lane whose edge function is exactly zero.
+// The watertight test of Woop, Benthin and Wald (JCGT 2013) for the lanes of V, each lane
+// one (triangle, ray) pair sharing the axis order kx, ky, kz: the same shear (WatertightRay)
+// and edge functions as intersect_watertight, with its double precision re-evaluation for
+// a lane whose edge function is exactly zero. v0, v1, v2 and org are indexed by axis; sx,
+// sy, sz are the rays' shear. Shared by the four-triangle test below and the packet test
+// (triangle_packet_intersect.h), so both compute the same values, bit for bit. Returns the
+// lanes hit with t in (t_min, t_max], with their t, u, v (unset when no lane is hit).
+template <class V>
+struct WatertightLanes {
+  // The paper's fallback: lanes with an edge function exactly 0 are recomputed in double.
+  [[gnu::noinline]] static void refine_in_double(unsigned lanes, V ax, V ay, V bx, V by, V cx,
+                                                 V cy, V& eu, V& ev, V& ew) {
+    constexpr int n = V::size;
+    alignas(64) float Ax[n], Ay[n], Bx[n], By[n], Cx[n], Cy[n], U[n], W[n], Vv[n];
+    ax.store(Ax), ay.store(Ay), bx.store(Bx), by.store(By), cx.store(Cx), cy.store(Cy);
+    eu.store(U), ev.store(Vv), ew.store(W);
+    for (int l = 0; l < n; ++l) {
+      if (!(lanes >> l & 1)) continue;
+      U[l] = static_cast<float>(double(Cx[l]) * By[l] - double(Cy[l]) * Bx[l]);
+      Vv[l] = static_cast<float>(double(Ax[l]) * Cy[l] - double(Ay[l]) * Cx[l]);
+      W[l] = static_cast<float>(double(Bx[l]) * Ay[l] - double(By[l]) * Ax[l]);
+    }
+    eu = V::load(U), ev = V::load(Vv), ew = V::load(W);
+  }
+
+  MLIB_INLINE static typename V::bool_type test(const V* v0, const V* v1, const V* v2,
+                                                const V* org, V sx, V sy, V sz, int kx, int ky,
+                                                int kz, V t_min, V t_max, V& t, V& u, V& v) {
+    // Vertices relative to the origin, in the ray's permuted axes.
+    const V az_ = v0[kz] - org[kz];
+    const V bz_ = v1[kz] - org[kz];
+    const V cz_ = v2[kz] - org[kz];
+    // ... and sheared into the ray's 2D frame.
+    const V ax = (v0[kx] - org[kx]) - sx * az_;
+    const V ay = (v0[ky] - org[ky]) - sy * az_;
+    const V bx = (v1[kx] - org[kx]) - sx * bz_;
+    const V by = (v1[ky] - org[ky]) - sy * bz_;
+    const V cx = (v2[kx] - org[kx]) - sx * cz_;
+    const V cy = (v2[ky] - org[ky]) - sy * cz_;
+    V eu = cx * by - cy * bx;
+    V ev = ax * cy - ay * cx;
+    V ew = bx * ay - by * ax;
+    const V zero = V::broadcast(0.0f);
+    const unsigned on_edge = mlib::bits((eu == zero) | (ev == zero) | (ew == zero));
+    if (on_edge) refine_in_double(on_edge, ax, ay, bx, by, cx, cy, eu, ev, ew);
+    const auto outside = ((eu < zero) | (ev < zero) | (ew < zero)) &
+                         ((eu > zero) | (ev > zero) | (ew > zero));
+    const V det = (eu + ev) + ew;
+    const auto ok = andnot(outside, det != zero) & (det == det);  // not parallel, not NaN
+    if (!mlib::bits(ok)) return ok;
+    const V inv = V::broadcast(1.0f) / det;
+    t = ((eu * (sz * az_) + ev * (sz * bz_)) + ew * (sz * cz_)) * inv;
+    u = ev * inv;
+    v = ew * inv;
+    return ok & (t > t_min) & (t <= t_max);
+  }
+};
+
+// The watertight test of one ray against the four triangles of a block.
 struct WatertightTriangleTest {
   WatertightRay ray;
   vfloat4 org[3], sx, sy, sz;
@@ -198,54 +254,16 @@ struct WatertightTriangleTest {
   }
 
  private:
-  // The lanes hit, with their t, u, v (left unset when no lane is hit).
   MLIB_INLINE vbool4 test(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
                           vfloat4& u, vfloat4& v) const {
-    const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
-    // Vertices relative to the origin, in the ray's permuted axes.
-    const vfloat4 az_ = vfloat4::load(b.v0[kz]) - org[kz];
-    const vfloat4 bz_ = vfloat4::load(b.v1[kz]) - org[kz];
-    const vfloat4 cz_ = vfloat4::load(b.v2[kz]) - org[kz];
-    // ... and sheared into the ray's 2D frame.
-    const vfloat4 ax = (vfloat4::load(b.v0[kx]) - org[kx]) - sx * az_;
-    const vfloat4 ay = (vfloat4::load(b.v0[ky]) - org[ky]) - sy * az_;
-    const vfloat4 bx = (vfloat4::load(b.v1[kx]) - org[kx]) - sx * bz_;
-    const vfloat4 by = (vfloat4::load(b.v1[ky]) - org[ky]) - sy * bz_;
-    const vfloat4 cx = (vfloat4::load(b.v2[kx]) - org[kx]) - sx * cz_;
-    const vfloat4 cy = (vfloat4::load(b.v2[ky]) - org[ky]) - sy * cz_;
-    vfloat4 eu = cx * by - cy * bx;
-    vfloat4 ev = ax * cy - ay * cx;
-    vfloat4 ew = bx * ay - by * ax;
-    const vfloat4 zero = vfloat4::broadcast(0.0f);
-    const unsigned on_edge = mlib::bits((eu == zero) | (ev == zero) | (ew == zero));
-    if (on_edge) refine_in_double(on_edge, ax, ay, bx, by, cx, cy, eu, ev, ew);
-    const vbool4 outside = ((eu < zero) | (ev < zero) | (ew < zero)) &
-                           ((eu > zero) | (ev > zero) | (ew > zero));
-    const vfloat4 det = (eu + ev) + ew;
-    const vbool4 ok = andnot(outside, det != zero) & (det == det);  // not parallel, not NaN
-    if (!mlib::bits(ok)) return ok;
-    const vfloat4 inv = vfloat4::broadcast(1.0f) / det;
-    t = ((eu * (sz * az_) + ev * (sz * bz_)) + ew * (sz * cz_)) * inv;
-    u = ev * inv;
-    v = ew * inv;
-    return ok & (t > t_min) & (t <= t_max);
-  }
-
-  // The paper's fallback: lanes with an edge function exactly 0 are recomputed in double.
-  [[gnu::noinline]] static void refine_in_double(unsigned lanes, vfloat4 ax, vfloat4 ay,
-                                                 vfloat4 bx, vfloat4 by, vfloat4 cx,
-                                                 vfloat4 cy, vfloat4& eu, vfloat4& ev,
-                                                 vfloat4& ew) {
-    alignas(16) float Ax[4], Ay[4], Bx[4], By[4], Cx[4], Cy[4], U[4], V[4], W[4];
-    ax.store(Ax), ay.store(Ay), bx.store(Bx), by.store(By), cx.store(Cx), cy.store(Cy);
-    eu.store(U), ev.store(V), ew.store(W);
-    for (int l = 0; l < 4; ++l) {
-      if (!(lanes >> l & 1)) continue;
-      U[l] = static_cast<float>(double(Cx[l]) * By[l] - double(Cy[l]) * Bx[l]);
-      V[l] = static_cast<float>(double(Ax[l]) * Cy[l] - double(Ay[l]) * Cx[l]);
-      W[l] = static_cast<float>(double(Bx[l]) * Ay[l] - double(By[l]) * Ax[l]);
+    vfloat4 v0[3], v1[3], v2[3];
+    for (int a = 0; a < 3; ++a) {
+      v0[a] = vfloat4::load(b.v0[a]);
+      v1[a] = vfloat4::load(b.v1[a]);
+      v2[a] = vfloat4::load(b.v2[a]);
     }
-    eu = vfloat4::load(U), ev = vfloat4::load(V), ew = vfloat4::load(W);
+    return WatertightLanes<vfloat4>::test(v0, v1, v2, org, sx, sy, sz, ray.kx, ray.ky, ray.kz,
+                                          t_min, t_max, t, u, v);
   }
 };
 

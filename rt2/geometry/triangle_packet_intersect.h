@@ -1,12 +1,13 @@
 // rt2/geometry/triangle_packet_intersect.h — the triangles of a block against a packet of
 // up to 16 rays (the leaves of a packet walk, bvh/packet_traverse.h).
 //
-// The fast test takes one triangle against N rays in one SIMD pass (triangle by triangle,
-// where the four-triangle test takes one ray against four triangles): a coherent packet's
-// rays mostly share the leaves they test, so the lanes stay full. It computes each
-// (triangle, ray) pair with FastTerms, as the four-triangle test does, so both find the
-// same hits, bit for bit. The watertight test keeps each ray's own four-triangle test
-// (its shear and axis order differ from ray to ray).
+// Both tests take one triangle against N rays in one SIMD pass (triangle by triangle, where
+// the four-triangle test takes one ray against four triangles): a coherent packet's rays
+// mostly share the leaves they test, so the lanes stay full. Each (triangle, ray) pair is
+// computed with FastTerms or WatertightLanes, as the four-triangle tests do, so both find
+// the same hits, bit for bit. The watertight test needs the rays to share their axis
+// order (each keeps its own shear); a packet whose rays do not is tested ray by ray, each
+// ray with its own four-triangle test.
 //
 // Both find, for each ray, the hit its own walk would keep: hits are merged with
 // `replaces`, which orders them by t and then by triangle index, whatever order they are
@@ -33,13 +34,79 @@ MLIB_INLINE bool replaces(const Hit& h, float t, std::uint32_t prim) {
   return t < h.t || (t == h.t && h.found() && prim < h.prim);
 }
 
-// The fast test over a packet whose rays are given as structure of arrays (org[a][l],
-// dir[a][l]: axis a of ray l; 64-byte aligned), N rays at a time.
+// The fast test's arithmetic for rays c ... c + N - 1 of a packet given as structure of
+// arrays (org[a][l], dir[a][l]: axis a of ray l; 64-byte aligned): FastTerms, as the
+// four-triangle test computes it.
 template <int N>
-struct FastPacketTest {
+struct FastPacketRays {
   using V = mlib::vfloat<N>;
   const float (*org)[kPacketSize];
   const float (*dir)[kPacketSize];
+
+  // The lanes hit by the triangle (v0, v1, v2, broadcast) with t in (t_min, t_max], with
+  // their t, u, v.
+  MLIB_INLINE unsigned hits(const V* v0, const V* v1, const V* v2, int c, V t_min, V t_max,
+                            V& t, V& u, V& v) const {
+    V o[3], d[3];
+    for (int a = 0; a < 3; ++a) {
+      o[a] = V::load(org[a] + c);
+      d[a] = V::load(dir[a] + c);
+    }
+    const FastTerms<V> terms(v0, v1, v2, o, d);
+    const unsigned m = terms.may_hit(t_min, t_max);
+    return m ? m & mlib::bits(terms.exact(t_min, t_max, t, u, v)) : 0u;
+  }
+};
+
+// The watertight test's arithmetic for rays c ... c + N - 1 of a packet whose rays share
+// their axis order (WatertightRay's kx, ky, kz: the axis of the largest direction component
+// and the sign of that component), each with its own shear: WatertightLanes, as the
+// four-triangle test computes it.
+template <int N>
+struct WatertightPacketRays {
+  using V = mlib::vfloat<N>;
+  const float (*org)[kPacketSize] = nullptr;
+  alignas(64) float sx[kPacketSize], sy[kPacketSize], sz[kPacketSize];
+  int kx = 0, ky = 0, kz = 0;
+
+  // Sets the shears up from rays[l] for the lanes l of `lanes` (org: their origins, as
+  // PacketRays holds them); false when two rays' axis orders differ.
+  bool make(const float (*origins)[kPacketSize], const Ray* rays, PacketMask lanes) {
+    org = origins;
+    bool first = true;
+    for (int l = 0; l < kPacketSize; ++l) {
+      if (!(lanes >> l & 1)) {
+        sx[l] = sy[l] = sz[l] = 0.0f;
+        continue;
+      }
+      const WatertightRay w(rays[l]);
+      if (first) {
+        kx = w.kx, ky = w.ky, kz = w.kz;
+        first = false;
+      } else if (w.kx != kx || w.ky != ky || w.kz != kz) {
+        return false;
+      }
+      sx[l] = w.sx, sy[l] = w.sy, sz[l] = w.sz;
+    }
+    return true;
+  }
+
+  MLIB_INLINE unsigned hits(const V* v0, const V* v1, const V* v2, int c, V t_min, V t_max,
+                            V& t, V& u, V& v) const {
+    V o[3];
+    for (int a = 0; a < 3; ++a) o[a] = V::load(org[a] + c);
+    return mlib::bits(WatertightLanes<V>::test(v0, v1, v2, o, V::load(sx + c), V::load(sy + c),
+                                               V::load(sz + c), kx, ky, kz, t_min, t_max, t, u,
+                                               v));
+  }
+};
+
+// One triangle of a block against N rays of a packet at a time (Rays: FastPacketRays or
+// WatertightPacketRays, which hold the packet's rays).
+template <int N, class Rays>
+struct TriangleMajorPacketTest {
+  using V = mlib::vfloat<N>;
+  Rays rays;
 
   // The vertices of triangle `lane` of b, in every lane.
   MLIB_INLINE static void broadcast(const TriangleBlock& b, int lane, V* v0, V* v1, V* v2) {
@@ -47,12 +114,6 @@ struct FastPacketTest {
       v0[a] = V::broadcast(b.v0[a][lane]);
       v1[a] = V::broadcast(b.v1[a][lane]);
       v2[a] = V::broadcast(b.v2[a][lane]);
-    }
-  }
-  MLIB_INLINE void rays(int c, V* o, V* d) const {
-    for (int a = 0; a < 3; ++a) {
-      o[a] = V::load(org[a] + c);
-      d[a] = V::load(dir[a] + c);
     }
   }
 
@@ -103,14 +164,8 @@ struct FastPacketTest {
       for (int c = 0; c < kPacketSize; c += N) {
         const unsigned chunk = lanes >> c & ((1u << N) - 1);
         if (!chunk) continue;
-        V o[3], d[3];
-        rays(c, o, d);
-        const FastTerms<V> terms(v0, v1, v2, o, d);
-        const V t_max = V::load(t_upper + c);
-        unsigned m = terms.may_hit(t_min, t_max) & chunk;
-        if (!m) continue;
         V t, u, v;
-        m &= mlib::bits(terms.exact(t_min, t_max, t, u, v));
+        unsigned m = rays.hits(v0, v1, v2, c, t_min, V::load(t_upper + c), t, u, v) & chunk;
         if (!m) continue;
         alignas(64) float ts[N], us[N], vs[N];
         t.store(ts), u.store(us), v.store(vs);
@@ -163,6 +218,42 @@ struct RayByRayPacketTest {
       }
     }
     return done;
+  }
+};
+
+template <int N>
+using FastPacketTest = TriangleMajorPacketTest<N, FastPacketRays<N>>;
+
+// The watertight test over a packet: triangle by triangle when the packet's rays share
+// their axis order (a coherent packet nearly always does), else ray by ray.
+template <int N>
+struct WatertightPacketTest {
+  bool shared = false;
+  TriangleMajorPacketTest<N, WatertightPacketRays<N>> triangle_major;
+  RayByRayPacketTest<WatertightTriangleTest> ray_by_ray;  // set only when !shared
+
+  WatertightPacketTest(const float (*origins)[kPacketSize], const Ray* rays, PacketMask lanes) {
+    shared = triangle_major.rays.make(origins, rays, lanes);
+    if (shared) return;
+    for (; lanes; lanes &= lanes - 1) {
+      const int l = std::countr_zero(lanes);
+      ray_by_ray.tests[l] = WatertightTriangleTest(rays[l]);
+    }
+  }
+
+  MLIB_INLINE void nearest(const TriangleBlock& b, PacketMask lanes, float t_min, Hit* hits,
+                           float* t_best) const {
+    if (shared)
+      triangle_major.nearest(b, lanes, t_min, hits, t_best);
+    else
+      ray_by_ray.nearest(b, lanes, t_min, hits, t_best);
+  }
+
+  template <class OnHit>
+  MLIB_INLINE PacketMask any(const TriangleBlock& b, PacketMask lanes, float t_min,
+                             const float* t_below, OnHit& on_hit) const {
+    return shared ? triangle_major.any(b, lanes, t_min, t_below, on_hit)
+                  : ray_by_ray.any(b, lanes, t_min, t_below, on_hit);
   }
 };
 

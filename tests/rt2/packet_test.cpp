@@ -221,6 +221,29 @@ TEST(Packets, TransmittanceThroughGlassEqualsSingleRaysBitForBit) {
   EXPECT_GT(free, 100u);
 }
 
+// Seen along the diagonal, the largest component of a ray's direction changes from ray to
+// ray inside a packet: the watertight test's axis order differs, and the packet tests its
+// rays one by one at the leaves; the answers stay those of single rays.
+TEST(Packets, DiagonalPacketsWithMixedAxisOrdersEqualSingleRays) {
+  const Scene scene = packet_scene();
+  const Batch b = tiles(vec4(2.5f, 2.5f, 2.5f), vec4(0.0f, 0.0f, 0.0f), 0.8f, 32, 32);
+  std::size_t mixed = 0;
+  for (std::size_t k = 0; k < b.packets(); ++k) {
+    const WatertightRay first(b.rays[b.begin[k]]);
+    for (std::uint32_t i = b.begin[k] + 1; i < b.begin[k + 1]; ++i)
+      if (WatertightRay(b.rays[i]).kz != first.kz) {
+        ++mixed;
+        break;
+      }
+  }
+  EXPECT_GE(mixed, 3u);           // the property under test: packets that mix
+  EXPECT_LT(mixed, b.packets());  // and packets that do not
+  const Compared c = compare(scene, b, "diagonal");
+  EXPECT_EQ(c.closest_mismatches + c.occluded_mismatches, 0u);
+  EXPECT_GT(c.hits, b.rays.size());
+  EXPECT_GT(c.packet_rays, b.rays.size() * 2);
+}
+
 // Every kind of lane a packet must refuse, drop or carry: random packets of 1..16 rays mixing
 // coherent rays with mixed-sign, NaN, zero and infinite directions, NaN origins, and t_max of
 // 0, NaN, a finite bound or +inf.
