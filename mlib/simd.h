@@ -92,6 +92,13 @@ MLIB_INLINE f4 dot4(f4 a0, f4 b0, f4 a1, f4 b1, f4 a2, f4 b2, f4 a3, f4 b3) {
   return _mm_add_ps(_mm_add_ps(p0, p1), _mm_add_ps(p2, p3));
 }
 
+// Four vectors' lanes regrouped (a 4x4 transpose): x = (a.x, b.x, c.x, d.x), y, z, w alike.
+// Structure of arrays from four vectors in four shuffles and four unpacks.
+MLIB_INLINE void transpose4(f4 a, f4 b, f4 c, f4 d, f4& x, f4& y, f4& z, f4& w) {
+  _MM_TRANSPOSE4_PS(a, b, c, d);
+  x = a, y = b, z = c, w = d;
+}
+
 // Horizontal minimum / maximum of lanes x, y, z (w ignored), as a float. NaN lanes follow
 // minss/maxss: the second operand wins, so `hmin3` of (NaN, 2, 3) may be 2 or NaN; callers
 // that care clamp NaN away first.

@@ -170,6 +170,14 @@ MLIB_INLINE f4 dot4(f4 a0, f4 b0, f4 a1, f4 b1, f4 a2, f4 b2, f4 a3, f4 b3) {
              detail::dp_sum(a3, b3)}};
 }
 
+// Four vectors' lanes regrouped (a 4x4 transpose): x = (a.x, b.x, c.x, d.x), y, z, w alike.
+MLIB_INLINE void transpose4(f4 a, f4 b, f4 c, f4 d, f4& x, f4& y, f4& z, f4& w) {
+  x = f4{{a.v[0], b.v[0], c.v[0], d.v[0]}};
+  y = f4{{a.v[1], b.v[1], c.v[1], d.v[1]}};
+  z = f4{{a.v[2], b.v[2], c.v[2], d.v[2]}};
+  w = f4{{a.v[3], b.v[3], c.v[3], d.v[3]}};
+}
+
 // Horizontal minimum / maximum of lanes x, y, z (w ignored), as a float, in the order of
 // the SSE version (min(min(x, y), z) with minss's rule): a NaN operand lets the second
 // operand win, so `hmin3` of (NaN, 2, 3) may be 2 or NaN; callers that care clamp first.

@@ -108,13 +108,11 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
 // bench_trace: primary and shadow rays of 4 x 4 tiles).
 inline constexpr int kMinPacketRays = 4;
 
-// The lanes of `lanes` whose rays have no NaN coordinate.
-inline PacketMask finite_lanes(const Ray* rays, PacketMask lanes) {
-  for (PacketMask m = lanes; m; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    if (has_nan(rays[l])) lanes &= ~(1u << l);
-  }
-  return lanes;
+// Loads the rays of `lanes` without a NaN coordinate into pr (which such a ray hits
+// nothing) and returns their lanes.
+inline PacketMask load_finite(PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes) {
+  const PacketMask finite = pr.load(rays, lanes);
+  return finite == lanes || finite == 0 ? finite : pr.load(rays, finite);
 }
 
 // Rays c ... c + N - 1 of a loaded packet, N = the ISA's SIMD width.
@@ -203,15 +201,14 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
 template <bool Watertight>
 inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
                                const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
-  const PacketMask finite = finite_lanes(rays, lanes);
+  PacketRays<kWidth> pr;
+  const PacketMask finite = load_finite(pr, rays, lanes);
   for (PacketMask m = lanes; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     hits[l] = Hit{};
     if (finite >> l & 1) hits[l].t = t_max[l];
   }
   if (finite) {
-    PacketRays<kWidth> pr;
-    pr.load(rays, finite);
     closest_plane_or_sphere_packet(acc, pr, rays, finite, t_min, hits);
     const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
     if (bvh.root == kNoChild) {
@@ -269,7 +266,8 @@ template <bool Watertight>
 inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask lanes,
                                   float t_min, const float* t_max,
                                   TraversalCounts* counts = nullptr) {
-  PacketMask open = finite_lanes(rays, lanes), blocked = 0;
+  PacketRays<kWidth> pr;  // the frustum bounds the finite rays (a superset of the open ones)
+  PacketMask open = load_finite(pr, rays, lanes), blocked = 0;
   for (PacketMask m = open; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
@@ -277,8 +275,7 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   open &= ~blocked;
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
   if (!open || bvh.root == kNoChild) return blocked;
-  PacketRays<kWidth> pr;
-  if (std::popcount(open) >= kMinPacketRays && pr.make(rays, open)) {
+  if (std::popcount(open) >= kMinPacketRays && pr.make_frustum()) {
     const PacketTestFor<Watertight> pt(pr, rays, open);
     return blocked | any_triangle_packet<kWidth>(
                          bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
@@ -449,11 +446,10 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
                                  const float* t_max, float* passed,
                                  TraversalCounts* counts = nullptr) {
   Crossings c[kPacketSize];
-  const PacketMask finite = finite_lanes(rays, lanes);
+  PacketRays<kWidth> pr;
+  const PacketMask finite = load_finite(pr, rays, lanes);
   for (PacketMask m = lanes & ~finite; m; m &= m - 1) passed[std::countr_zero(m)] = 1.0f;
   if (!finite) return;
-  PacketRays<kWidth> pr;
-  pr.load(rays, finite);
   PacketMask blocked = cross_planes_and_spheres_packet(acc, materials, pr, rays, finite, t_min,
                                                        t_max, c);
   const PacketMask open = finite & ~blocked;

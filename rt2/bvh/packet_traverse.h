@@ -59,18 +59,38 @@ struct PacketRays {
   // distance, (bounds[far] - o_far) * i_far at least every exit (see the file comment).
   V o_near[3], o_far[3], i_near[3], i_far[3];
 
-  // Loads rays[l] for the lanes l of `lanes` (at least one) into org and dir. Lanes without
-  // a ray take the first ray's values: their bits are masked off later, and the frustum's
-  // bounds stay those of the rays.
-  void load(const Ray* rays, PacketMask lanes) {
-    const int first = std::countr_zero(lanes);
-    for (int l = 0; l < kPacketSize; ++l) {
-      const Ray& r = rays[lanes >> l & 1 ? l : first];
-      for (int a = 0; a < 3; ++a) {
-        org[a][l] = r.org[a];
-        dir[a][l] = r.dir[a];
-      }
+  // Loads rays[l] for the lanes l of `lanes` (at least one) into org and dir, four rays at a
+  // time (a transpose); returns those lanes whose ray has no NaN coordinate (w included,
+  // as has_nan checks). Lanes without a ray take the first ray's values: their bits are
+  // masked off later, and the frustum's bounds stay those of the rays. When a ray has a NaN,
+  // load again with the returned lanes.
+  PacketMask load(const Ray* rays, PacketMask lanes) {
+    const Ray* first = rays + std::countr_zero(lanes);
+    alignas(64) float w[2][kPacketSize];
+    for (int g = 0; g < kPacketSize; g += 4) {
+      const Ray* r[4];
+      for (int i = 0; i < 4; ++i) r[i] = lanes >> (g + i) & 1 ? rays + g + i : first;
+      mlib::simd::f4 x, y, z, ww;
+      mlib::simd::transpose4(r[0]->org.m128(), r[1]->org.m128(), r[2]->org.m128(),
+                             r[3]->org.m128(), x, y, z, ww);
+      mlib::simd::store(org[0] + g, x), mlib::simd::store(org[1] + g, y);
+      mlib::simd::store(org[2] + g, z), mlib::simd::store(w[0] + g, ww);
+      mlib::simd::transpose4(r[0]->dir.m128(), r[1]->dir.m128(), r[2]->dir.m128(),
+                             r[3]->dir.m128(), x, y, z, ww);
+      mlib::simd::store(dir[0] + g, x), mlib::simd::store(dir[1] + g, y);
+      mlib::simd::store(dir[2] + g, z), mlib::simd::store(w[1] + g, ww);
     }
+    PacketMask nan = 0;
+    for (int c = 0; c < kPacketSize; c += N) {
+      auto m = V::load(w[0] + c) != V::load(w[0] + c);
+      m = m | (V::load(w[1] + c) != V::load(w[1] + c));
+      for (int a = 0; a < 3; ++a) {
+        m = m | (V::load(org[a] + c) != V::load(org[a] + c));
+        m = m | (V::load(dir[a] + c) != V::load(dir[a] + c));
+      }
+      nan |= PacketMask(mlib::bits(m)) << c;
+    }
+    return lanes & ~nan;
   }
 
   // After load: the reciprocals and the frustum. Returns false when the rays cannot walk
@@ -109,9 +129,9 @@ struct PacketRays {
     return true;
   }
 
-  // load and make_frustum.
+  // load and make_frustum (false also when a ray has a NaN coordinate).
   bool make(const Ray* rays, PacketMask lanes) {
-    load(rays, lanes);
+    if (load(rays, lanes) != lanes) return false;
     return make_frustum();
   }
 
