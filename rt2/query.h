@@ -30,12 +30,12 @@ using TriangleTest = std::conditional_t<Watertight, WatertightTriangleTest, Fast
 // `lanes` of a packet loaded into pr.
 template <bool Watertight>
 struct PacketTestFor {
-  FastPacketTest<kWidth> test;
+  FastPacketTest<kRayLanes> test;
   PacketTestFor(const PacketRays<kWidth>& pr, const Ray*, PacketMask) : test{{pr.org, pr.dir}} {}
 };
 template <>
 struct PacketTestFor<true> {
-  WatertightPacketTest<kWidth> test;
+  WatertightPacketTest<kRayLanes> test;
   PacketTestFor(const PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes)
       : test(pr.org, rays, lanes) {}
 };
@@ -115,9 +115,9 @@ inline PacketMask load_finite(PacketRays<kWidth>& pr, const Ray* rays, PacketMas
   return finite == lanes || finite == 0 ? finite : pr.load(rays, finite);
 }
 
-// Rays c ... c + N - 1 of a loaded packet, N = the ISA's SIMD width.
-inline RayLanes<mlib::vfloat<kWidth>> ray_lanes(const PacketRays<kWidth>& pr, int c) {
-  using V = mlib::vfloat<kWidth>;
+// Rays c ... c + kRayLanes - 1 of a loaded packet.
+inline RayLanes<mlib::vfloat<kRayLanes>> ray_lanes(const PacketRays<kWidth>& pr, int c) {
+  using V = mlib::vfloat<kRayLanes>;
   RayLanes<V> r;
   for (int a = 0; a < 3; ++a) {
     r.o[a] = V::load(pr.org[a] + c);
@@ -142,16 +142,16 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
       closest_plane_or_sphere(acc, rays[std::countr_zero(m)], t_min, hits[std::countr_zero(m)]);
     return;
   }
-  using V = mlib::vfloat<kWidth>;
+  using V = mlib::vfloat<kRayLanes>;
   const V t_min_v = V::broadcast(t_min);
   const std::uint32_t first_sphere = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].offset;
   const std::uint32_t spheres = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].count;
-  for (int c = 0; c < kPacketSize; c += kWidth) {
-    const unsigned chunk = lanes >> c & ((1u << kWidth) - 1);
+  for (int c = 0; c < kPacketSize; c += kRayLanes) {
+    const unsigned chunk = lanes >> c & ((1u << kRayLanes) - 1);
     if (!chunk) continue;
     const RayLanes<V> r = ray_lanes(pr, c);
-    alignas(64) float best[kWidth];
-    for (int i = 0; i < kWidth; ++i) best[i] = hits[c + i].t;
+    alignas(64) float best[kRayLanes];
+    for (int i = 0; i < kRayLanes; ++i) best[i] = hits[c + i].t;
     V t_best = V::load(best);
     for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
       const V t = plane_t(acc.planes[i], r);
@@ -170,7 +170,7 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
       const unsigned m_doubled = roots.doubled & chunk;
       if (!(m_hit | m_doubled)) continue;
       const V t = select(near_in, roots.lo, roots.hi);
-      alignas(64) float ts[kWidth];
+      alignas(64) float ts[kRayLanes];
       t.store(ts);
       t_best.store(best);
       for (unsigned m = m_hit; m; m &= m - 1) {
@@ -387,16 +387,16 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
     }
     return blocked;
   }
-  using V = mlib::vfloat<kWidth>;
+  using V = mlib::vfloat<kRayLanes>;
   const V t_min_v = V::broadcast(t_min);
   const std::uint32_t first_sphere = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].offset;
   const std::uint32_t spheres = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].count;
-  for (int k = 0; k < kPacketSize; k += kWidth) {
-    unsigned open = lanes >> k & ((1u << kWidth) - 1);
+  for (int k = 0; k < kPacketSize; k += kRayLanes) {
+    unsigned open = lanes >> k & ((1u << kRayLanes) - 1);
     if (!open) continue;
     const RayLanes<V> r = ray_lanes(pr, k);
-    alignas(64) float bound[kWidth];
-    for (int i = 0; i < kWidth; ++i) bound[i] = t_max[k + i];
+    alignas(64) float bound[kRayLanes];
+    for (int i = 0; i < kRayLanes; ++i) bound[i] = t_max[k + i];
     const V t_max_v = V::load(bound);
     const auto cross = [&](int l, float kt) {  // lane l of this chunk crosses a surface
       if (c[k + l].cross(kt)) open &= ~(1u << l);
@@ -432,7 +432,7 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
         if (open >> l & 1 && intersect(sp, rays[k + l], t, t_max[k + l], t2)) cross(l, kt);
       }
     }
-    blocked |= PacketMask((lanes >> k & ((1u << kWidth) - 1)) & ~open) << k;
+    blocked |= PacketMask((lanes >> k & ((1u << kRayLanes) - 1)) & ~open) << k;
   }
   return blocked;
 }

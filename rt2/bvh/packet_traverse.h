@@ -47,8 +47,9 @@ namespace rt2::RT2_ISA {
 // per-ray slab terms of NodeRay<N, true>), and the frustum that bounds them.
 template <int N>
 struct PacketRays {
-  using V = mlib::vfloat<N>;
-  static_assert(kPacketSize % N == 0);
+  using V = mlib::vfloat<N>;            // a node's N children
+  using R = mlib::vfloat<kRayLanes>;    // kRayLanes of the packet's rays
+  static constexpr PacketMask kChunk = (PacketMask(1) << kRayLanes) - 1;
 
   alignas(64) float org[3][kPacketSize];
   alignas(64) float dir[3][kPacketSize];
@@ -81,16 +82,23 @@ struct PacketRays {
       mlib::simd::store(dir[2] + g, z), mlib::simd::store(w[1] + g, ww);
     }
     PacketMask nan = 0;
-    for (int c = 0; c < kPacketSize; c += N) {
-      auto m = V::load(w[0] + c) != V::load(w[0] + c);
-      m = m | (V::load(w[1] + c) != V::load(w[1] + c));
+    for (int c = 0; c < kPacketSize; c += kRayLanes) {
+      auto m = R::load(w[0] + c) != R::load(w[0] + c);
+      m = m | (R::load(w[1] + c) != R::load(w[1] + c));
       for (int a = 0; a < 3; ++a) {
-        m = m | (V::load(org[a] + c) != V::load(org[a] + c));
-        m = m | (V::load(dir[a] + c) != V::load(dir[a] + c));
+        m = m | (R::load(org[a] + c) != R::load(org[a] + c));
+        m = m | (R::load(dir[a] + c) != R::load(dir[a] + c));
       }
       nan |= PacketMask(mlib::bits(m)) << c;
     }
     return lanes & ~nan;
+  }
+
+  // The value of r's lanes (all equal) in every lane of a V.
+  MLIB_INLINE static V widen(R r) {
+    alignas(64) float x[kRayLanes];
+    r.store(x);
+    return V::broadcast(x[0]);
   }
 
   // After load: the reciprocals and the frustum. Returns false when the rays cannot walk
@@ -98,15 +106,15 @@ struct PacketRays {
   // zero (an infinite reciprocal).
   bool make_frustum() {
     constexpr PacketMask kAll = (PacketMask(1) << kPacketSize) - 1;
-    const V one = V::broadcast(1.0f), pad = V::broadcast(kSlabPad), zero = V::broadcast(0.0f),
-            inf = V::broadcast(kInfinity), minus_inf = V::broadcast(-kInfinity);
+    const R one = R::broadcast(1.0f), pad = R::broadcast(kSlabPad), zero = R::broadcast(0.0f),
+            inf = R::broadcast(kInfinity), minus_inf = R::broadcast(-kInfinity);
     for (int a = 0; a < 3; ++a) {
-      V o_lo = inf, o_hi = minus_inf, i_lo = inf, i_hi = minus_inf, f_lo = inf, f_hi = minus_inf;
+      R o_lo = inf, o_hi = minus_inf, i_lo = inf, i_hi = minus_inf, f_lo = inf, f_hi = minus_inf;
       PacketMask negative = 0, finite = 0;
-      for (int c = 0; c < kPacketSize; c += N) {
-        const V d = V::load(dir[a] + c), o = V::load(org[a] + c);
-        const V inv = one / d;  // as RayPre computes it
-        const V inv_f = inv * pad;
+      for (int c = 0; c < kPacketSize; c += kRayLanes) {
+        const R d = R::load(dir[a] + c), o = R::load(org[a] + c);
+        const R inv = one / d;  // as RayPre computes it
+        const R inv_f = inv * pad;
         inv.store(inv_near[a] + c);
         inv_f.store(inv_far[a] + c);
         negative |= PacketMask(mlib::bits(d < zero)) << c;
@@ -121,10 +129,10 @@ struct PacketRays {
       far[a] = near[a] ^ 1;
       // Positive direction: the near plane is a box's low side, nearest to the largest
       // origin; negative: its high side, nearest to the smallest origin.
-      o_near[a] = negative ? mlib::reduce_min(o_lo) : mlib::reduce_max(o_hi);
-      o_far[a] = negative ? mlib::reduce_max(o_hi) : mlib::reduce_min(o_lo);
-      i_near[a] = negative ? mlib::reduce_max(i_hi) : mlib::reduce_min(i_lo);  // smallest |.|
-      i_far[a] = negative ? mlib::reduce_min(f_lo) : mlib::reduce_max(f_hi);   // largest |.|
+      o_near[a] = widen(negative ? mlib::reduce_min(o_lo) : mlib::reduce_max(o_hi));
+      o_far[a] = widen(negative ? mlib::reduce_max(o_hi) : mlib::reduce_min(o_lo));
+      i_near[a] = widen(negative ? mlib::reduce_max(i_hi) : mlib::reduce_min(i_lo));  // smallest |.|
+      i_far[a] = widen(negative ? mlib::reduce_min(f_lo) : mlib::reduce_max(f_hi));   // largest |.|
     }
     return true;
   }
@@ -149,26 +157,26 @@ struct PacketRays {
   }
 
   // The lanes of `lanes` whose rays enter child `slot` of `node` within [t_min,
-  // t_max_padded[l] / kSlabPad]: each ray's own test (NodeRay<N, true>::test), N rays at a
-  // time.
-  MLIB_INLINE PacketMask enter(const WideNode<N>& node, int slot, PacketMask lanes, V t_min,
+  // t_max_padded[l] / kSlabPad]: each ray's own test (NodeRay<N, true>::test), kRayLanes
+  // rays at a time.
+  MLIB_INLINE PacketMask enter(const WideNode<N>& node, int slot, PacketMask lanes, R t_min,
                                const float* t_max_padded) const {
-    V lo[3], hi[3];
+    R lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      lo[a] = V::broadcast(node.bounds[near[a]][slot]);
-      hi[a] = V::broadcast(node.bounds[far[a]][slot]);
+      lo[a] = R::broadcast(node.bounds[near[a]][slot]);
+      hi[a] = R::broadcast(node.bounds[far[a]][slot]);
     }
     PacketMask mask = 0;
-    for (int c = 0; c < kPacketSize; c += N) {
-      if (!(lanes >> c & ((1u << N) - 1))) continue;
-      V n[3], f[3];
+    for (int c = 0; c < kPacketSize; c += kRayLanes) {
+      if (!(lanes >> c & kChunk)) continue;
+      R n[3], f[3];
       for (int a = 0; a < 3; ++a) {
-        const V o = V::load(org[a] + c);
-        n[a] = (lo[a] - o) * V::load(inv_near[a] + c);
-        f[a] = (hi[a] - o) * V::load(inv_far[a] + c);
+        const R o = R::load(org[a] + c);
+        n[a] = (lo[a] - o) * R::load(inv_near[a] + c);
+        f[a] = (hi[a] - o) * R::load(inv_far[a] + c);
       }
-      const V entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
-      const V exit = imin(imin(f[0], f[1]), imin(f[2], V::load(t_max_padded + c)));
+      const R entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
+      const R exit = imin(imin(f[0], f[1]), imin(f[2], R::load(t_max_padded + c)));
       mask |= PacketMask(mlib::bits(ile(entry, exit))) << c;
     }
     return mask & lanes;
@@ -200,6 +208,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
                                     TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   const V t_min_v = V::broadcast(t_min);
+  const typename PacketRays<N>::R t_min_r = PacketRays<N>::R::broadcast(t_min);
   TraversalCounts local;
   count_packet(local, lanes);
   alignas(64) float t_best[kPacketSize];
@@ -228,7 +237,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
       int k = 0;
       for (; mask; mask &= mask - 1) {
         const int i = std::countr_zero(mask);
-        const PacketMask in = pr.enter(node, i, rays, t_min_v, t_max_padded);
+        const PacketMask in = pr.enter(node, i, rays, t_min_r, t_max_padded);
         if (in) hit[k++] = {node.child[i], entry_t[i], in};
       }
       if (k == 0) goto pop;
@@ -278,6 +287,7 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
                                       OnHit&& on_hit, TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   const V t_min_v = V::broadcast(t_min);
+  const typename PacketRays<N>::R t_min_r = PacketRays<N>::R::broadcast(t_min);
   TraversalCounts local;
   count_packet(local, lanes);
   alignas(64) float t_max_padded[kPacketSize];
@@ -304,7 +314,7 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
       PacketMask next = 0;
       for (; mask; mask &= mask - 1) {
         const int i = std::countr_zero(mask);
-        const PacketMask in = pr.enter(node, i, rays, t_min_v, t_max_padded);
+        const PacketMask in = pr.enter(node, i, rays, t_min_r, t_max_padded);
         if (!in) continue;
         if (next) stack[sp++] = {ref, 0.0f, next};  // the previous child (ref reused below)
         ref = node.child[i];  // tentatively the child walked next

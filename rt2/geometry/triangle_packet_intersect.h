@@ -26,6 +26,10 @@ namespace rt2::RT2_ISA {
 
 inline constexpr int kPacketSize = 16;
 using PacketMask = std::uint32_t;  // bit l: lane l of a packet
+// How many of a packet's rays one SIMD pass takes: the widest vfloat of the instruction set
+// (16 with AVX-512: the whole packet).
+inline constexpr int kRayLanes = mlib::kWidestLanes;
+static_assert(kPacketSize % kRayLanes == 0);
 
 // Whether a hit of triangle `prim` at t replaces h: nearer, or as near and of a smaller
 // index (a triangle also wins a tie against a sphere or a plane, whose tagged references

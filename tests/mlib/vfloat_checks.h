@@ -1,7 +1,7 @@
-// tests/mlib/vfloat_checks.h — the checks of the wide SIMD types (vfloat4, vfloat8), written
-// once as a template: the vfloat4 tests run them in the baseline build, the vfloat8 ones
-// from a translation unit compiled for AVX2 (vfloat8_checks.cpp), called only on a CPU that
-// has it. They return the number of failures and describe the first in `first` (C strings
+// tests/mlib/vfloat_checks.h — the checks of the wide SIMD types (vfloat4, vfloat8,
+// vfloat16), written once as a template: the vfloat4 tests run them in the baseline build,
+// the vfloat8 and vfloat16 ones from translation units compiled for AVX2 and AVX-512
+// (vfloat8_checks.cpp, vfloat16_checks.cpp), called only on a CPU that has it. They return the number of failures and describe the first in `first` (C strings
 // and snprintf only: no library template is instantiated in the AVX2 unit, where the linker
 // could pick its copy for the baseline code).
 #pragma once
@@ -71,6 +71,11 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
   // reduce_min puts the smallest lane everywhere.
   reduce_min(vb).store(out);
   for (int i = 0; i < N; ++i) expect(out[i] == 0.25f, "reduce_min");
+  reduce_max(vb).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == 0.25f * float(N), "reduce_max");
+  // sqrt is correctly rounded, as std::sqrt.
+  sqrt(abs(va) * vb).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == std::sqrt(std::fabs(a[i]) * b[i]), "sqrt", i);
   // Integer order of the bits: float order for non-negative values, negatives lowest,
   // -0 the lowest of all.
   alignas(64) float p[N], q[N];

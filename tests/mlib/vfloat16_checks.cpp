@@ -1,0 +1,9 @@
+// tests/mlib/vfloat16_checks.cpp — vfloat16's checks (vfloat_checks.h), compiled for AVX-512
+// and called by vfloat_test.cpp only on a CPU that has it (nothing here runs at start-up).
+#include "tests/mlib/vfloat_checks.h"
+
+namespace mlib::test {
+
+int check_vfloat16(char (&first)[kFirstFailureSize]) { return check_vfloat<vfloat16>(first); }
+
+}  // namespace mlib::test
