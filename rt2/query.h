@@ -37,7 +37,7 @@ template <>
 struct PacketTestFor<true> {
   WatertightPacketTest<kRayLanes> test;
   PacketTestFor(const PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes)
-      : test(pr.org, rays, lanes) {}
+      : test(pr.org, pr.dir, rays, lanes) {}
 };
 
 // Whether any coordinate of the ray is NaN: such a ray hits nothing (and would otherwise
@@ -137,6 +137,7 @@ inline bool spheres_in_one_leaf(const Accel& acc) {
 inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kWidth>& pr,
                                            const Ray* rays, PacketMask lanes, float t_min,
                                            Hit* hits) {
+  if (acc.planes.empty() && acc.spheres.empty()) return;
   if (!spheres_in_one_leaf(acc)) {
     for (PacketMask m = lanes; m; m &= m - 1)
       closest_plane_or_sphere(acc, rays[std::countr_zero(m)], t_min, hits[std::countr_zero(m)]);
@@ -379,6 +380,7 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
                                                   PacketMask lanes, float t_min,
                                                   const float* t_max, Crossings* c) {
   PacketMask blocked = 0;
+  if (acc.planes.empty() && acc.spheres.empty()) return blocked;
   if (!spheres_in_one_leaf(acc)) {
     for (PacketMask m = lanes; m; m &= m - 1) {
       const int l = std::countr_zero(m);

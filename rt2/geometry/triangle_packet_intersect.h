@@ -18,6 +18,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <utility>
 
 #include "mlib/vfloat.h"
 #include "rt2/geometry/triangle_block_intersect.h"
@@ -73,24 +74,35 @@ struct WatertightPacketRays {
   alignas(64) float sx[kPacketSize], sy[kPacketSize], sz[kPacketSize];
   int kx = 0, ky = 0, kz = 0;
 
-  // Sets the shears up from rays[l] for the lanes l of `lanes` (org: their origins, as
-  // PacketRays holds them); false when two rays' axis orders differ.
-  bool make(const float (*origins)[kPacketSize], const Ray* rays, PacketMask lanes) {
+  // Sets the shears up from the packet's rays, as structure of arrays (origins and
+  // directions as PacketRays holds them: every lane set, those outside the packet copies of
+  // one of its rays), in SIMD with WatertightRay's arithmetic; false when two rays' axis
+  // orders differ.
+  bool make(const float (*origins)[kPacketSize], const float (*dirs)[kPacketSize]) {
     org = origins;
-    bool first = true;
-    for (int l = 0; l < kPacketSize; ++l) {
-      if (!(lanes >> l & 1)) {
-        sx[l] = sy[l] = sz[l] = 0.0f;
-        continue;
-      }
-      const WatertightRay w(rays[l]);
-      if (first) {
-        kx = w.kx, ky = w.ky, kz = w.kz;
-        first = false;
-      } else if (w.kx != kx || w.ky != ky || w.kz != kz) {
-        return false;
-      }
-      sx[l] = w.sx, sy[l] = w.sy, sz[l] = w.sz;
+    constexpr unsigned kAll = (1u << N) - 1;
+    int order = -1;  // kz, and 3 more when the kz component is negative
+    for (int c = 0; c < kPacketSize; c += N) {
+      const V d[3] = {V::load(dirs[0] + c), V::load(dirs[1] + c), V::load(dirs[2] + c)};
+      const V ax = abs(d[0]), ay = abs(d[1]), az = abs(d[2]);
+      // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2)
+      const unsigned x_gt_y = mlib::bits(ax > ay);
+      const unsigned z0 = x_gt_y & mlib::bits(ax > az);
+      const unsigned z1 = ~x_gt_y & mlib::bits(ay > az) & kAll;
+      const int kz_c = z0 == kAll ? 0 : z1 == kAll ? 1 : (z0 | z1) == 0 ? 2 : -1;
+      if (kz_c < 0) return false;
+      const unsigned negative = mlib::bits(d[kz_c] < V::broadcast(0.0f));
+      if (negative != 0 && negative != kAll) return false;
+      const int order_c = kz_c + (negative ? 3 : 0);
+      if (order >= 0 && order_c != order) return false;
+      order = order_c;
+      kz = kz_c;
+      kx = (kz + 1) % 3;
+      ky = (kx + 1) % 3;
+      if (negative) std::swap(kx, ky);
+      (d[kx] / d[kz]).store(sx + c);
+      (d[ky] / d[kz]).store(sy + c);
+      (V::broadcast(1.0f) / d[kz]).store(sz + c);
     }
     return true;
   }
@@ -236,8 +248,10 @@ struct WatertightPacketTest {
   TriangleMajorPacketTest<N, WatertightPacketRays<N>> triangle_major;
   RayByRayPacketTest<WatertightTriangleTest> ray_by_ray;  // set only when !shared
 
-  WatertightPacketTest(const float (*origins)[kPacketSize], const Ray* rays, PacketMask lanes) {
-    shared = triangle_major.rays.make(origins, rays, lanes);
+  // origins and dirs: the packet's rays as PacketRays holds them; rays: the same rays.
+  WatertightPacketTest(const float (*origins)[kPacketSize], const float (*dirs)[kPacketSize],
+                       const Ray* rays, PacketMask lanes) {
+    shared = triangle_major.rays.make(origins, dirs);
     if (shared) return;
     for (; lanes; lanes &= lanes - 1) {
       const int l = std::countr_zero(lanes);
