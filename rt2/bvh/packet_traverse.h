@@ -66,30 +66,26 @@ struct PacketRays {
   // masked off later, and the frustum's bounds stay those of the rays. When a ray has a NaN,
   // load again with the returned lanes.
   PacketMask load(const Ray* rays, PacketMask lanes) {
+    namespace simd = mlib::simd;
     const Ray* first = rays + std::countr_zero(lanes);
-    alignas(64) float w[2][kPacketSize];
+    PacketMask nan = 0;
     for (int g = 0; g < kPacketSize; g += 4) {
       const Ray* r[4];
       for (int i = 0; i < 4; ++i) r[i] = lanes >> (g + i) & 1 ? rays + g + i : first;
-      mlib::simd::f4 x, y, z, ww;
-      mlib::simd::transpose4(r[0]->org.m128(), r[1]->org.m128(), r[2]->org.m128(),
-                             r[3]->org.m128(), x, y, z, ww);
-      mlib::simd::store(org[0] + g, x), mlib::simd::store(org[1] + g, y);
-      mlib::simd::store(org[2] + g, z), mlib::simd::store(w[0] + g, ww);
-      mlib::simd::transpose4(r[0]->dir.m128(), r[1]->dir.m128(), r[2]->dir.m128(),
-                             r[3]->dir.m128(), x, y, z, ww);
-      mlib::simd::store(dir[0] + g, x), mlib::simd::store(dir[1] + g, y);
-      mlib::simd::store(dir[2] + g, z), mlib::simd::store(w[1] + g, ww);
-    }
-    PacketMask nan = 0;
-    for (int c = 0; c < kPacketSize; c += kRayLanes) {
-      auto m = R::load(w[0] + c) != R::load(w[0] + c);
-      m = m | (R::load(w[1] + c) != R::load(w[1] + c));
-      for (int a = 0; a < 3; ++a) {
-        m = m | (R::load(org[a] + c) != R::load(org[a] + c));
-        m = m | (R::load(dir[a] + c) != R::load(dir[a] + c));
-      }
-      nan |= PacketMask(mlib::bits(m)) << c;
+      simd::f4 ox, oy, oz, ow, dx, dy, dz, dw;
+      simd::transpose4(r[0]->org.m128(), r[1]->org.m128(), r[2]->org.m128(), r[3]->org.m128(),
+                       ox, oy, oz, ow);
+      simd::transpose4(r[0]->dir.m128(), r[1]->dir.m128(), r[2]->dir.m128(), r[3]->dir.m128(),
+                       dx, dy, dz, dw);
+      simd::store(org[0] + g, ox), simd::store(org[1] + g, oy), simd::store(org[2] + g, oz);
+      simd::store(dir[0] + g, dx), simd::store(dir[1] + g, dy), simd::store(dir[2] + g, dz);
+      // NaN checked here, not reloaded from the arrays: a wide load of narrower stores
+      // would wait for them to commit.
+      const simd::f4 o_nan = simd::bit_or(simd::bit_or(simd::cmp_ne(ox, ox), simd::cmp_ne(oy, oy)),
+                                          simd::bit_or(simd::cmp_ne(oz, oz), simd::cmp_ne(ow, ow)));
+      const simd::f4 d_nan = simd::bit_or(simd::bit_or(simd::cmp_ne(dx, dx), simd::cmp_ne(dy, dy)),
+                                          simd::bit_or(simd::cmp_ne(dz, dz), simd::cmp_ne(dw, dw)));
+      nan |= PacketMask(simd::movemask(simd::bit_or(o_nan, d_nan))) << g;
     }
     return lanes & ~nan;
   }
