@@ -41,6 +41,18 @@ class Film {
     ++samples_[i];
   }
 
+  // Asks for the state of the pixels in columns [x0, x1) of rows [y0, y1) to be brought
+  // into the caches, ahead of adding to them (a hint: the film of a frame is larger than
+  // the caches, and a block's rays take long enough to hide the fetch).
+  void prefetch(int x0, int y0, int x1, int y1) const {
+    const int lines = ((x1 - x0) * int(sizeof(vec4)) + 63) / 64 + 1;
+    for (int y = y0; y < y1; ++y) {
+      mlib::prefetch(&sum_[index(x0, y)], lines);
+      mlib::prefetch(&carry_[index(x0, y)], lines);
+      mlib::prefetch(&samples_[index(x0, y)], 2);
+    }
+  }
+
   // The mean of each pixel's samples, into `image` (resized); a pixel without samples is
   // black. A mean that is NaN or infinite (never expected) is written as black and counted
   // in the return value.

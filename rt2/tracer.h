@@ -299,6 +299,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   const std::size_t n = std::size_t(block.x1 - block.x0) * std::size_t(block.y1 - block.y0) *
                         std::size_t(samples);
   b.colors.assign(n, vec4());
+  film.prefetch(block.x0, block.y0, block.x1, block.y1);  // for step 6
   generate(r, block, s0, s1, b);  // 1.
   counts.primary += n;
   for (bool primary = true; !b.rays.empty(); primary = false) {
