@@ -3,6 +3,8 @@
 // flags (rt2/isa.h). Everything defined here is in rt2::RT2_ISA.
 #include "rt2/isa_kernels.h"
 
+#include <algorithm>
+
 #include "rt2/tracer.h"
 
 namespace rt2::RT2_ISA {
@@ -23,29 +25,35 @@ void trace_occluded(const Accel& acc, const Ray* rays, const float* t_max, std::
     occluded_out[i] = occluded<Watertight>(acc, rays[i], 0.0f, t_max[i], counts) ? 1 : 0;
 }
 
-// Packet k: rays [packet_begin[k], packet_begin[k + 1]), in lanes 0, 1, ...
+// Packet k: rays [packet_begin[k], packet_begin[k + 1]), in lanes 0, 1, ... A packet of
+// more than kPacketSize rays is taken kPacketSize at a time; an empty one is skipped.
+template <class F>
+void for_each_packet(const std::uint32_t* packet_begin, std::size_t packets, F&& f) {
+  for (std::size_t k = 0; k < packets; ++k)
+    for (std::uint32_t b = packet_begin[k]; b < packet_begin[k + 1]; b += kPacketSize)
+      f(b, std::min<std::uint32_t>(kPacketSize, packet_begin[k + 1] - b));
+}
+
 template <bool Watertight>
 void trace_closest_packets(const Accel& acc, const Ray* rays, const float* t_max,
                            const std::uint32_t* packet_begin, std::size_t packets, Hit* hits,
                            TraversalCounts* counts) {
-  Hit h[kPacketSize];
-  for (std::size_t k = 0; k < packets; ++k) {
-    const std::uint32_t b = packet_begin[k], n = packet_begin[k + 1] - b;
+  for_each_packet(packet_begin, packets, [&](std::uint32_t b, std::uint32_t n) {
+    Hit h[kPacketSize];
     closest_hit_packet<Watertight>(acc, rays + b, (1u << n) - 1, 0.0f, t_max + b, h, counts);
     std::copy(h, h + n, hits + b);
-  }
+  });
 }
 
 template <bool Watertight>
 void trace_occluded_packets(const Accel& acc, const Ray* rays, const float* t_max,
                             const std::uint32_t* packet_begin, std::size_t packets,
                             std::uint8_t* occluded_out, TraversalCounts* counts) {
-  for (std::size_t k = 0; k < packets; ++k) {
-    const std::uint32_t b = packet_begin[k], n = packet_begin[k + 1] - b;
+  for_each_packet(packet_begin, packets, [&](std::uint32_t b, std::uint32_t n) {
     const PacketMask blocked =
         occluded_packet<Watertight>(acc, rays + b, (1u << n) - 1, 0.0f, t_max + b, counts);
     for (std::uint32_t l = 0; l < n; ++l) occluded_out[b + l] = blocked >> l & 1;
-  }
+  });
 }
 
 template <bool Watertight>
@@ -61,11 +69,10 @@ void trace_transmittance_packets(const Accel& acc, const std::vector<Material>& 
                                  const Ray* rays, const float* t_max,
                                  const std::uint32_t* packet_begin, std::size_t packets,
                                  float* passed, TraversalCounts* counts) {
-  for (std::size_t k = 0; k < packets; ++k) {
-    const std::uint32_t b = packet_begin[k], n = packet_begin[k + 1] - b;
+  for_each_packet(packet_begin, packets, [&](std::uint32_t b, std::uint32_t n) {
     transmittance_packet<Watertight>(acc, materials, rays + b, (1u << n) - 1, 0.0f, t_max + b,
                                      passed + b, counts);
-  }
+  });
 }
 
 }  // namespace

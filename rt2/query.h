@@ -127,7 +127,8 @@ inline RayLanes<mlib::vfloat<kRayLanes>> ray_lanes(const PacketRays<kWidth>& pr,
 }
 
 // Whether the spheres' tree is one leaf (or empty): then a packet tests its spheres in
-// SIMD over rays, in the order of the one-ray walk; otherwise ray by ray.
+// SIMD over rays, in the order of the one-ray walk; otherwise ray by ray (as it does rays
+// whose w lanes are not +0, which the SIMD form does not carry).
 inline bool spheres_in_one_leaf(const Accel& acc) {
   return acc.spheres.empty() || acc.sphere_bvh.nodes[0].is_leaf();
 }
@@ -138,7 +139,7 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
                                            const Ray* rays, PacketMask lanes, float t_min,
                                            Hit* hits) {
   if (acc.planes.empty() && acc.spheres.empty()) return;
-  if (!spheres_in_one_leaf(acc)) {
+  if (!spheres_in_one_leaf(acc) || !pr.w_zero) {
     for (PacketMask m = lanes; m; m &= m - 1)
       closest_plane_or_sphere(acc, rays[std::countr_zero(m)], t_min, hits[std::countr_zero(m)]);
     return;
@@ -292,35 +293,50 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
 }
 
 // The transparencies Kt of the surfaces a shadow ray crosses, multiplied in an order that
-// does not depend on the order they are found in (sorted first, up to 16 of them), so that
-// every ISA, BVH width and walk gives the same value.
+// does not depend on the order they are found in, so that every ISA, BVH width and walk
+// (one ray or a packet) gives the same value: each distinct Kt is kept with how many times
+// it was crossed, and the product runs over the values in ascending order, each as many
+// times as it was crossed (for up to 16 crossings, the product of the sorted factors).
 class Crossings {
  public:
   // Adds a crossing of a surface of transparency k; returns true when no light can pass
   // any more (k = 0: opaque).
   bool cross(float k) {
     if (k == 0.0f) return true;
-    if (kept_ < kKept)
-      factors_[kept_++] = k;
-    else
+    for (int i = 0; i < distinct_; ++i)
+      if (values_[i] == k) {
+        ++counts_[i];
+        return false;
+      }
+    if (distinct_ < kDistinct) {
+      values_[distinct_] = k;
+      counts_[distinct_++] = 1;
+    } else {
       overflow_ *= k;
+    }
     return false;
   }
   // The product of the factors (when cross never returned true).
   float transmittance() {
-    for (int i = 1; i < kept_; ++i)  // ascending (insertion sort: kept is small)
-      for (int j = i; j > 0 && factors_[j] < factors_[j - 1]; --j)
-        std::swap(factors_[j], factors_[j - 1]);
+    for (int i = 1; i < distinct_; ++i)  // ascending (insertion sort: few values)
+      for (int j = i; j > 0 && values_[j] < values_[j - 1]; --j) {
+        std::swap(values_[j], values_[j - 1]);
+        std::swap(counts_[j], counts_[j - 1]);
+      }
     float tr = 1.0f;
-    for (int i = 0; i < kept_; ++i) tr *= factors_[i];
+    for (int i = 0; i < distinct_; ++i)
+      for (std::uint32_t n = 0; n < counts_[i]; ++n) tr *= values_[i];
     return tr * overflow_;
   }
 
  private:
-  static constexpr int kKept = 16;
-  float factors_[kKept];
-  int kept_ = 0;
-  float overflow_ = 1.0f;  // beyond kKept crossings (never seen in practice): in found order
+  static constexpr int kDistinct = 16;
+  float values_[kDistinct];
+  std::uint32_t counts_[kDistinct];
+  int distinct_ = 0;
+  // Beyond 16 distinct transparencies on one ray (materials of 17 different Kt crossed):
+  // in found order, the one case where the walk's order shows in the last bits.
+  float overflow_ = 1.0f;
 };
 
 // The crossings of planes and spheres on (t_min, t_max) of `ray`; returns true when one is
@@ -381,7 +397,7 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
                                                   const float* t_max, Crossings* c) {
   PacketMask blocked = 0;
   if (acc.planes.empty() && acc.spheres.empty()) return blocked;
-  if (!spheres_in_one_leaf(acc)) {
+  if (!spheres_in_one_leaf(acc) || !pr.w_zero) {
     for (PacketMask m = lanes; m; m &= m - 1) {
       const int l = std::countr_zero(m);
       if (cross_planes_and_spheres(acc, materials, rays[l], t_min, t_max[l], c[l]))
@@ -398,7 +414,7 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
     if (!open) continue;
     const RayLanes<V> r = ray_lanes(pr, k);
     alignas(64) float bound[kRayLanes];
-    for (int i = 0; i < kRayLanes; ++i) bound[i] = t_max[k + i];
+    for (int i = 0; i < kRayLanes; ++i) bound[i] = lanes >> (k + i) & 1 ? t_max[k + i] : 0.0f;
     const V t_max_v = V::load(bound);
     const auto cross = [&](int l, float kt) {  // lane l of this chunk crosses a surface
       if (c[k + l].cross(kt)) open &= ~(1u << l);

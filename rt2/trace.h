@@ -39,9 +39,9 @@ void trace_transmittance(const Accel& acc, const std::vector<Material>& material
                          std::size_t n, float* passed, TraversalCounts* counts = nullptr);
 
 // The same for packets of coherent rays (a 4 x 4 tile of primary rays, their shadow rays):
-// packet k is rays [packet_begin[k], packet_begin[k + 1]), at most 16 consecutive rays,
-// walked together (rt2/bvh/packet_traverse.h) when their directions allow it, else one by
-// one. The answers are those of trace_closest / trace_occluded / trace_transmittance, bit
+// packet k is rays [packet_begin[k], packet_begin[k + 1]) (packet_begin non-decreasing),
+// walked together, 16 rays at a time, (rt2/bvh/packet_traverse.h) when their directions
+// allow it, else one by one. The answers are those of trace_closest / trace_occluded / trace_transmittance, bit
 // for bit.
 void trace_closest_packets(const Accel& acc, const TraceOptions& options, const Ray* rays,
                            const float* t_max, const std::uint32_t* packet_begin,

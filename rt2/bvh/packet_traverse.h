@@ -59,6 +59,9 @@ struct PacketRays {
   // The frustum, per axis: (bounds[near] - o_near) * i_near is at most every ray's entry
   // distance, (bounds[far] - o_far) * i_far at least every exit (see the file comment).
   V o_near[3], o_far[3], i_near[3], i_far[3];
+  // Whether every loaded ray's w lanes are +0, as ray.h's invariant says (the structure of
+  // arrays holds x, y, z only; code that emulates four-lane arithmetic relies on it).
+  bool w_zero = true;
 
   // Loads rays[l] for the lanes l of `lanes` (at least one) into org and dir, four rays at a
   // time (a transpose); returns those lanes whose ray has no NaN coordinate (w included,
@@ -69,6 +72,7 @@ struct PacketRays {
     namespace simd = mlib::simd;
     const Ray* first = rays + std::countr_zero(lanes);
     PacketMask nan = 0;
+    w_zero = true;
     for (int g = 0; g < kPacketSize; g += 4) {
       const Ray* r[4];
       for (int i = 0; i < 4; ++i) r[i] = lanes >> (g + i) & 1 ? rays + g + i : first;
@@ -86,6 +90,10 @@ struct PacketRays {
       const simd::f4 d_nan = simd::bit_or(simd::bit_or(simd::cmp_ne(dx, dx), simd::cmp_ne(dy, dy)),
                                           simd::bit_or(simd::cmp_ne(dz, dz), simd::cmp_ne(dw, dw)));
       nan |= PacketMask(simd::movemask(simd::bit_or(o_nan, d_nan))) << g;
+      // +0 exactly: equal to 0, sign bit clear.
+      const simd::f4 zero = simd::zero();
+      w_zero = w_zero && simd::all(simd::cmp_eq(ow, zero)) && simd::movemask(ow) == 0 &&
+               simd::all(simd::cmp_eq(dw, zero)) && simd::movemask(dw) == 0;
     }
     return lanes & ~nan;
   }

@@ -3,8 +3,9 @@
 //
 // Each lane computes exactly what the one-ray tests of plane.h and sphere.h compute, bit
 // for bit: the same operations in the same order, with vec4's dot product (dpps) summed as
-// (x x' + y y') + (z z' + w w'), the w terms kept (0 for points and directions, NaN when a
-// product with them is 0 x inf, as in the four-lane code). A sphere's lanes that the
+// (x x' + y y') + (z z' + w w'), the w terms kept for the planes' and spheres' own w and
+// the rays' w taken as +0 (ray.h's invariant; the packet code checks it and tests rays
+// that break it one by one), so a product like 0 x inf still gives NaN as there. A sphere's lanes that the
 // one-ray test sends to double precision (a sphere small against its distance) are
 // reported, not computed: the caller runs the one-ray test for them.
 //
