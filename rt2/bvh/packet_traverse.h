@@ -98,6 +98,20 @@ struct PacketRays {
     return lanes & ~nan;
   }
 
+  // t_max_padded = t * kSlabPad for every lane (t_max_padded is 64-byte aligned); returns
+  // the largest, NaN lanes left out.
+  MLIB_INLINE static float pad_and_max(const float* t, float* t_max_padded) {
+    R m = R::broadcast(0.0f);
+    for (int c = 0; c < kPacketSize; c += kRayLanes) {
+      const R p = R::load(t + c) * R::broadcast(kSlabPad);
+      p.store(t_max_padded + c);
+      m = max(p, m);  // a NaN lane of p (a NaN t_max) keeps m, as std::max(t_far, NaN) would
+    }
+    alignas(64) float x[kRayLanes];
+    mlib::reduce_max(m).store(x);
+    return x[0];
+  }
+
   // The value of r's lanes (all equal) in every lane of a V.
   MLIB_INLINE static V widen(R r) {
     alignas(64) float x[kRayLanes];
@@ -215,14 +229,13 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
   const typename PacketRays<N>::R t_min_r = PacketRays<N>::R::broadcast(t_min);
   TraversalCounts local;
   count_packet(local, lanes);
+  // Per ray: its best hit's t so far, and that padded as the box tests take it (0 for the
+  // lanes outside the packet, which no test reads, so that the largest is t_far).
   alignas(64) float t_best[kPacketSize];
   alignas(64) float t_max_padded[kPacketSize];
-  float t_far = 0.0f;  // the largest of them: no ray hits anything beyond
-  for (int l = 0; l < kPacketSize; ++l) {
-    t_best[l] = hits[l].t;
-    t_max_padded[l] = hits[l].t * kSlabPad;
-    if (lanes >> l & 1) t_far = std::max(t_far, t_max_padded[l]);
-  }
+  for (int l = 0; l < kPacketSize; ++l) t_best[l] = lanes >> l & 1 ? hits[l].t : 0.0f;
+  // t_far: no ray hits anything beyond it.
+  float t_far = pr.pad_and_max(t_best, t_max_padded);
   PacketStackEntry stack[kStackSize<N>];
   int sp = 0;
   std::uint32_t ref = bvh.root;
@@ -258,13 +271,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
       test.nearest(*b, rays, t_min, hits, t_best);
       if (b->last()) break;
     }
-    for (PacketMask m = rays; m; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      t_max_padded[l] = t_best[l] * kSlabPad;
-    }
-    t_far = 0.0f;
-    for (PacketMask m = lanes; m; m &= m - 1)
-      t_far = std::max(t_far, t_max_padded[std::countr_zero(m)]);
+    t_far = pr.pad_and_max(t_best, t_max_padded);
   pop:
     for (;;) {
       if (sp == 0) {
