@@ -104,8 +104,8 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
   return h;
 }
 
-// Below this many rays a packet's walk costs more than the rays' own walks (measured with
-// bench_trace: primary and shadow rays of 4 x 4 tiles).
+// Below this many rays a packet's rays walk one by one: setting the packet up (its
+// frustum, its leaf test) would cost more than sharing the walk saves.
 inline constexpr int kMinPacketRays = 4;
 
 // Loads the rays of `lanes` without a NaN coordinate into pr (which such a ray hits
@@ -134,7 +134,7 @@ inline bool spheres_in_one_leaf(const Accel& acc) {
 }
 
 // closest_plane_or_sphere for each ray of `lanes` of a packet loaded into pr (hits[l].t is
-// the bound on entry), bit for bit, N rays at a time.
+// the bound on entry), bit for bit, kRayLanes rays at a time.
 inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kWidth>& pr,
                                            const Ray* rays, PacketMask lanes, float t_min,
                                            Hit* hits) {
@@ -197,7 +197,7 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
 
 // closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
 // t_max[l]) for the lanes l of `lanes` (bit for bit the same), planes and spheres tested
-// N rays at a time, the triangles walked as one packet when the rays allow it
+// kRayLanes rays at a time, the triangles walked as one packet when the rays allow it
 // (packet_traverse.h). rays, t_max and hits have kPacketSize entries; lanes not in `lanes`
 // are left alone.
 template <bool Watertight>
@@ -214,6 +214,7 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
     closest_plane_or_sphere_packet(acc, pr, rays, finite, t_min, hits);
     const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
     if (bvh.root == kNoChild) {
+      // no triangles
     } else if (std::popcount(finite) >= kMinPacketRays && pr.make_frustum()) {
       const PacketTestFor<Watertight> pt(pr, rays, finite);
       closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), pr, pt.test, finite, t_min, hits,
@@ -456,7 +457,7 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
 }
 
 // transmittance for each ray of a packet: passed[l] for the lanes l of `lanes`, bit for bit
-// what transmittance gives, planes and spheres tested N rays at a time, the triangles
+// what transmittance gives, planes and spheres tested kRayLanes rays at a time, the triangles
 // walked as one packet when the rays allow it.
 template <bool Watertight>
 inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
@@ -476,6 +477,7 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
     return c[l].cross(materials[acc.tri_materials[prim]].transparency);
   };
   if (!open || bvh.root == kNoChild) {
+    // nothing left to walk
   } else if (std::popcount(open) >= kMinPacketRays && pr.make_frustum()) {
     const PacketTestFor<Watertight> pt(pr, rays, open);
     blocked |= any_triangle_packet<kWidth>(

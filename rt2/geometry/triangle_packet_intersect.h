@@ -1,9 +1,9 @@
 // rt2/geometry/triangle_packet_intersect.h — the triangles of a block against a packet of
 // up to 16 rays (the leaves of a packet walk, bvh/packet_traverse.h).
 //
-// Both tests take one triangle against N rays in one SIMD pass (triangle by triangle, where
-// the four-triangle test takes one ray against four triangles): a coherent packet's rays
-// mostly share the leaves they test, so the lanes stay full. Each (triangle, ray) pair is
+// Both tests take one triangle against kRayLanes rays in one SIMD pass (triangle by triangle,
+// where the four-triangle test takes one ray against four triangles): a coherent packet's
+// rays mostly share the leaves they test, so the lanes stay full. Each (triangle, ray) pair is
 // computed with FastTerms or WatertightLanes, as the four-triangle tests do, so both find
 // the same hits, bit for bit. The watertight test needs the rays to share their axis
 // order (each keeps its own shear); a packet whose rays do not is tested ray by ray, each
