@@ -134,8 +134,11 @@ struct FastTriangleTest {
       v1[a] = vfloat4::load(b.v1[a]);
       v2[a] = vfloat4::load(b.v2[a]);
     }
-    const FastTerms<vfloat4> f(v0, v1, v2, org, dir);
-    return {f, f.may_hit(t_min, t_max)};
+    // Built in place and returned as one object: returning `{terms, terms.may_hit(...)}`
+    // made GCC 12 copy the terms through memory, and single rays 12-14 % slower.
+    Undivided d{FastTerms<vfloat4>(v0, v1, v2, org, dir), 0};
+    d.may_hit = d.terms.may_hit(t_min, t_max);
+    return d;
   }
 
   // The exact test of the lanes in d.may_hit: t in (t_min, t_max], u, v.
