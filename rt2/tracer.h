@@ -3,12 +3,16 @@
 //
 // A tile is traced in blocks of pixels (RenderSettings::block). For a block and a range of
 // samples the kernel runs stages over batches, breadth first through the ray tree:
-//   1. generate: one primary ray per sample of every pixel of the block;
-//   2. intersect the batch (closest hit);
+//   1. generate: one primary ray per sample of every pixel of the block, in packets of one
+//      sample over 4 x 4 pixels;
+//   2. intersect the batch (closest hit), packet by packet (secondary batches 16 rays at a
+//      time, in batch order): rt2/query.h's packet queries, or one ray at a time when
+//      RenderSettings::packets is off, with the same answers;
 //   3. shade the hits: the ambient term goes to the sample's colour at once; for each
 //      light the surface faces, the unshadowed Phong term goes into a batch of shadow rays;
 //      reflected and refracted rays whose weight passes min_weight go into the next batch;
-//   4. trace the shadow batch (transmittance) and add each light's term times what passed;
+//   4. trace the shadow batch (transmittance; in packets of 16 rays to one light, grouped by
+//      a stable sort) and add each light's term times what passed, in batch order;
 //   5. repeat 2 ... 4 with the next batch until it is empty or `depth` is reached;
 //   6. add each sample's colour to the film, samples in index order.
 // A ray's contribution is its weight (the product of the Kr / Kt factors along its path)
