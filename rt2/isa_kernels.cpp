@@ -38,10 +38,9 @@ template <bool Watertight>
 void trace_closest_packets(const Accel& acc, const Ray* rays, const float* t_max,
                            const std::uint32_t* packet_begin, std::size_t packets, Hit* hits,
                            TraversalCounts* counts) {
-  Hit h[kPacketSize];
   for_each_packet(packet_begin, packets, [&](std::uint32_t b, std::uint32_t n) {
-    closest_hit_packet<Watertight>(acc, rays + b, (1u << n) - 1, 0.0f, t_max + b, h, counts);
-    std::copy(h, h + n, hits + b);
+    closest_hit_packet<Watertight>(acc, rays + b, (1u << n) - 1, 0.0f, t_max + b, hits + b,
+                                   counts);
   });
 }
 

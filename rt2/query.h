@@ -153,7 +153,7 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
     if (!chunk) continue;
     const RayLanes<V> r = ray_lanes(pr, c);
     alignas(64) float best[kRayLanes];
-    for (int i = 0; i < kRayLanes; ++i) best[i] = hits[c + i].t;
+    for (int i = 0; i < kRayLanes; ++i) best[i] = chunk >> i & 1 ? hits[c + i].t : 0.0f;
     V t_best = V::load(best);
     for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
       const V t = plane_t(acc.planes[i], r);
@@ -198,8 +198,8 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
 // closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
 // t_max[l]) for the lanes l of `lanes` (bit for bit the same), planes and spheres tested
 // kRayLanes rays at a time, the triangles walked as one packet when the rays allow it
-// (packet_traverse.h). rays, t_max and hits have kPacketSize entries; lanes not in `lanes`
-// are left alone.
+// (packet_traverse.h). Only the lanes of `lanes` of rays, t_max and hits are read or
+// written.
 template <bool Watertight>
 inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
                                const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
