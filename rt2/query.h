@@ -7,6 +7,7 @@
 // the code lives in rt2::RT2_ISA, and the ISA's BVH width is fixed here at compile time.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <utility>
 #include <vector>
@@ -195,6 +196,22 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
   }
 }
 
+// The lanes of `lanes` of a loaded packet split by their directions' octant (the signs of
+// x, y, z; a zero component counts as positive here, and such a ray's group then fails
+// make_frustum).
+inline std::array<PacketMask, 8> octant_groups(const PacketRays<kWidth>& pr, PacketMask lanes) {
+  using R = mlib::vfloat<kRayLanes>;
+  PacketMask negative[3] = {0, 0, 0};
+  for (int c = 0; c < kPacketSize; c += kRayLanes)
+    for (int a = 0; a < 3; ++a)
+      negative[a] |= PacketMask(mlib::bits(R::load(pr.dir[a] + c) < R::broadcast(0.0f))) << c;
+  std::array<PacketMask, 8> groups;
+  for (int o = 0; o < 8; ++o)
+    groups[o] = lanes & (o & 1 ? negative[0] : ~negative[0]) &
+                (o & 2 ? negative[1] : ~negative[1]) & (o & 4 ? negative[2] : ~negative[2]);
+  return groups;
+}
+
 // closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
 // t_max[l]) for the lanes l of `lanes` (bit for bit the same), planes and spheres tested
 // kRayLanes rays at a time, the triangles walked as one packet when the rays allow it
@@ -220,7 +237,22 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
       closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), pr, pt.test, finite, t_min, hits,
                                       counts);
     } else {
-      for (PacketMask m = finite; m; m &= m - 1) {
+      // Rays of mixed directions (reflections off a curved surface): those of each octant
+      // with enough company walk as a smaller packet, the others one by one.
+      PacketMask single = finite;
+      if (std::popcount(finite) >= 2 * kMinPacketRays) {
+        for (const PacketMask group : octant_groups(pr, finite)) {
+          if (std::popcount(group) < kMinPacketRays) continue;
+          PacketRays<kWidth> sub;
+          sub.load(rays, group);
+          if (!sub.make_frustum()) continue;
+          const PacketTestFor<Watertight> pt(sub, rays, group);
+          closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), sub, pt.test, group, t_min,
+                                          hits, counts);
+          single &= ~group;
+        }
+      }
+      for (PacketMask m = single; m; m &= m - 1) {
         const int l = std::countr_zero(m);
         closest_triangle<kWidth>(bvh, acc.blocks.data(), rays[l],
                                  TriangleTest<Watertight>(rays[l]), t_min, hits[l], counts);
