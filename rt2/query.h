@@ -212,6 +212,32 @@ inline std::array<PacketMask, 8> octant_groups(const PacketRays<kWidth>& pr, Pac
   return groups;
 }
 
+// Walks the rays of `lanes` (loaded into pr) as packets where they can: all together when
+// there are enough of them and their directions share signs, else one smaller packet per
+// octant with at least kMinPacketRays rays. walk(packet_rays, group) walks one packet;
+// returns the lanes walked, the caller takes the others one by one.
+template <class Walk>
+inline PacketMask walk_as_packets(PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes,
+                                  Walk&& walk) {
+  if (std::popcount(lanes) < kMinPacketRays) return 0;
+  if (pr.make_frustum()) {
+    walk(pr, lanes);
+    return lanes;
+  }
+  // Rays of mixed directions (reflections off a curved surface, a tile across an axis).
+  PacketMask walked = 0;
+  if (std::popcount(lanes) < 2 * kMinPacketRays) return walked;
+  for (const PacketMask group : octant_groups(pr, lanes)) {
+    if (std::popcount(group) < kMinPacketRays) continue;
+    PacketRays<kWidth> sub;
+    sub.load(rays, group);
+    if (!sub.make_frustum()) continue;
+    walk(sub, group);
+    walked |= group;
+  }
+  return walked;
+}
+
 // closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
 // t_max[l]) for the lanes l of `lanes` (bit for bit the same), planes and spheres tested
 // kRayLanes rays at a time, the triangles walked as one packet when the rays allow it
@@ -232,27 +258,14 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
     const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
     if (bvh.root == kNoChild) {
       // no triangles
-    } else if (std::popcount(finite) >= kMinPacketRays && pr.make_frustum()) {
-      const PacketTestFor<Watertight> pt(pr, rays, finite);
-      closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), pr, pt.test, finite, t_min, hits,
-                                      counts);
     } else {
-      // Rays of mixed directions (reflections off a curved surface): those of each octant
-      // with enough company walk as a smaller packet, the others one by one.
-      PacketMask single = finite;
-      if (std::popcount(finite) >= 2 * kMinPacketRays) {
-        for (const PacketMask group : octant_groups(pr, finite)) {
-          if (std::popcount(group) < kMinPacketRays) continue;
-          PacketRays<kWidth> sub;
-          sub.load(rays, group);
-          if (!sub.make_frustum()) continue;
-          const PacketTestFor<Watertight> pt(sub, rays, group);
-          closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), sub, pt.test, group, t_min,
-                                          hits, counts);
-          single &= ~group;
-        }
-      }
-      for (PacketMask m = single; m; m &= m - 1) {
+      const PacketMask walked =
+          walk_as_packets(pr, rays, finite, [&](const PacketRays<kWidth>& p, PacketMask group) {
+            const PacketTestFor<Watertight> pt(p, rays, group);
+            closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), p, pt.test, group, t_min,
+                                            hits, counts);
+          });
+      for (PacketMask m = finite & ~walked; m; m &= m - 1) {
         const int l = std::countr_zero(m);
         closest_triangle<kWidth>(bvh, acc.blocks.data(), rays[l],
                                  TriangleTest<Watertight>(rays[l]), t_min, hits[l], counts);
@@ -310,13 +323,14 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   open &= ~blocked;
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
   if (!open || bvh.root == kNoChild) return blocked;
-  if (std::popcount(open) >= kMinPacketRays && pr.make_frustum()) {
-    const PacketTestFor<Watertight> pt(pr, rays, open);
-    return blocked | any_triangle_packet<kWidth>(
-                         bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
-                         [](int, std::uint32_t, float) { return true; }, counts);
-  }
-  for (PacketMask m = open; m; m &= m - 1) {
+  const PacketMask walked =
+      walk_as_packets(pr, rays, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
+        const PacketTestFor<Watertight> pt(p, rays, group);
+        blocked |= any_triangle_packet<kWidth>(
+            bvh, acc.blocks.data(), p, pt.test, group, t_min, t_max,
+            [](int, std::uint32_t, float) { return true; }, counts);
+      });
+  for (PacketMask m = open & ~walked; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l], TriangleTest<Watertight>(rays[l]),
                              t_min, t_max[l], [](std::uint32_t, float) { return true; }, counts))
@@ -508,15 +522,15 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
   const auto cross_triangle = [&](int l, std::uint32_t prim) {
     return c[l].cross(materials[acc.tri_materials[prim]].transparency);
   };
-  if (!open || bvh.root == kNoChild) {
-    // nothing left to walk
-  } else if (std::popcount(open) >= kMinPacketRays && pr.make_frustum()) {
-    const PacketTestFor<Watertight> pt(pr, rays, open);
-    blocked |= any_triangle_packet<kWidth>(
-        bvh, acc.blocks.data(), pr, pt.test, open, t_min, t_max,
-        [&](int l, std::uint32_t prim, float) { return cross_triangle(l, prim); }, counts);
-  } else {
-    for (PacketMask m = open; m; m &= m - 1) {
+  if (open && bvh.root != kNoChild) {
+    const PacketMask walked =
+        walk_as_packets(pr, rays, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
+          const PacketTestFor<Watertight> pt(p, rays, group);
+          blocked |= any_triangle_packet<kWidth>(
+              bvh, acc.blocks.data(), p, pt.test, group, t_min, t_max,
+              [&](int l, std::uint32_t prim, float) { return cross_triangle(l, prim); }, counts);
+        });
+    for (PacketMask m = open & ~walked; m; m &= m - 1) {
       const int l = std::countr_zero(m);
       if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l], TriangleTest<Watertight>(rays[l]),
                                t_min, t_max[l],
