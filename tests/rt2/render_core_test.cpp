@@ -23,22 +23,6 @@
 namespace rt2 {
 namespace {
 
-// The built-in scene with glass, a second light and every kind of primitive.
-Scene glass_scene() {
-  Scene s = make_default_scene();
-  Material glass;
-  glass.diffuse = vec4(0.05f, 0.05f, 0.05f);
-  glass.specular = vec4(0.8f, 0.8f, 0.8f);
-  glass.reflectivity = 0.1f;
-  glass.transparency = 0.85f;
-  glass.ior = 1.5f;
-  const std::uint32_t g = s.add_material("glass", glass);
-  s.spheres.push_back(Sphere{vec4(-0.6f, 0.3f, 0.4f), 0.3f});
-  s.sphere_materials.push_back(g);
-  set_light_count(s, 2);
-  return s;
-}
-
 RenderSettings settings(int subpixels, int passes, int block = 16) {
   RenderSettings st;
   st.width = 48;
@@ -56,7 +40,7 @@ bool identical(const Image& a, const Image& b) {
 }
 
 TEST(RenderCore, TilesBlocksPassesAndBackendsGiveIdenticalImages) {
-  const Scene s = glass_scene();
+  const Scene s = test::glass_scene();
   const Image ref = test::render_scene(s, settings(4, 1));
   for (int tile : {0, 1, 7, 16, 100})
     for (int block : {1, 5, 16, 256})
@@ -73,7 +57,7 @@ TEST(RenderCore, TilesBlocksPassesAndBackendsGiveIdenticalImages) {
 // triangle tests, for glass that shadow rays cross (transmittance through triangles and
 // spheres), mirrors, supersampling and blocks that are not multiples of 4.
 TEST(RenderCore, PacketsOnOrOffGiveIdenticalImagesOnEveryIsaAndTest) {
-  Scene s = glass_scene();
+  Scene s = test::glass_scene();
   Material glass = s.materials[s.sphere_materials.back()];
   glass.transparency = 0.6f;
   const std::uint32_t g = s.add_material("mesh glass", glass);
@@ -103,13 +87,13 @@ TEST(RenderCore, EightPassesOfOneSampleEqualOnePassOfEight) {
   for (Pattern pattern : {Pattern::grid, Pattern::circle}) {
     RenderSettings one = settings(8, 1), eight = settings(8, 8);
     one.pattern = eight.pattern = pattern;
-    EXPECT_TRUE(identical(test::render_scene(glass_scene(), one),
-                          test::render_scene(glass_scene(), eight)));
+    EXPECT_TRUE(identical(test::render_scene(test::glass_scene(), one),
+                          test::render_scene(test::glass_scene(), eight)));
   }
 }
 
 TEST(RenderCore, AFilmHoldsThePassesSoFarAndTheirMeanIsAValidImage) {
-  const Scene s = glass_scene();
+  const Scene s = test::glass_scene();
   const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
   const Renderer r(c, View{s.camera, settings(4, 4)});
   Film film(48, 36);
@@ -211,7 +195,7 @@ vec4 trace_depth_first(const CompiledScene& c, const RenderSettings& st, const R
 }
 
 TEST(RenderCore, TheBatchedKernelComputesWhatADepthFirstTracerComputes) {
-  for (const Scene& s : {make_default_scene(), glass_scene()}) {
+  for (const Scene& s : {make_default_scene(), test::glass_scene()}) {
     const RenderSettings st = settings(2, 1);
     const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
     const Image batched = test::render_scene(s, st);

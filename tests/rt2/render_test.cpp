@@ -15,22 +15,6 @@
 namespace rt2 {
 namespace {
 
-// A scene with every feature: glass, mirror, specular, spheres, a plane, triangles, lights.
-Scene everything_scene() {
-  Scene s = make_default_scene();
-  Material glass;
-  glass.diffuse = vec4(0.05f, 0.05f, 0.05f);
-  glass.specular = vec4(0.8f, 0.8f, 0.8f);
-  glass.reflectivity = 0.1f;
-  glass.transparency = 0.85f;
-  glass.ior = 1.5f;
-  const std::uint32_t g = s.add_material("glass", glass);
-  s.spheres.push_back(Sphere{vec4(-0.6f, 0.3f, 0.4f), 0.3f});
-  s.sphere_materials.push_back(g);
-  set_light_count(s, 2);
-  return s;
-}
-
 Image render(const Scene& scene, const RenderSettings& st, const Schedule& sched,
              RayCounts* rays = nullptr, BvhConfig bvh = {}, Isa isa = best_isa()) {
   FrameResult fr;
@@ -62,7 +46,7 @@ double mean(const Image& img) {
 TEST(Render, FeaturesOfTheDefaultSceneExcludeRefraction) {
   const Scene s = make_default_scene();
   EXPECT_EQ(s.features(), unsigned(kReflection | kSpecular | kSpheres | kPlanes | kTriangles));
-  EXPECT_EQ(everything_scene().features(), kAllFeatures);
+  EXPECT_EQ(test::glass_scene().features(), kAllFeatures);
   Scene dark = make_default_scene();
   dark.lights.clear();
   EXPECT_FALSE(dark.features() & kSpecular);  // specular needs a light to matter
@@ -72,7 +56,7 @@ TEST(Render, EveryInstructionSetGivesIdenticalImages) {
   Scene no_planes = make_default_scene();
   no_planes.planes.clear();
   no_planes.plane_materials.clear();
-  for (const Scene& s : {make_default_scene(), everything_scene(), no_planes})
+  for (const Scene& s : {make_default_scene(), test::glass_scene(), no_planes})
     for (bool watertight : {false, true}) {
       RenderSettings st = small();
       st.watertight = watertight;
@@ -103,7 +87,7 @@ TEST(Render, TilesRenderWithDenormalsFlushedAndTheCallersModeComesBack) {
 }
 
 TEST(Render, BackendsThreadCountsAndGrainsGiveIdenticalImages) {
-  const Scene s = everything_scene();
+  const Scene s = test::glass_scene();
   const Image ref = render(s, small(), Schedule{Backend::serial, 1, 1});
   for (Backend b : {Backend::omp, Backend::tbb})
     for (int threads : {1, 2, 3, 8})
@@ -114,7 +98,7 @@ TEST(Render, BackendsThreadCountsAndGrainsGiveIdenticalImages) {
 }
 
 TEST(Render, BvhLayoutDoesNotChangeTheImage) {
-  const Scene s = everything_scene();
+  const Scene s = test::glass_scene();
   const Image ref = render(s, small(1, 3), Schedule{Backend::omp, 2, 4});
   for (BvhConfig cfg : {BvhConfig{1, Split::midpoint, 16}, BvhConfig{64, Split::sah, 8},
                         BvhConfig{1u << 20, Split::sah, 16}}) {
@@ -140,12 +124,12 @@ TEST(Render, PrimaryRayCountIsPixelsTimesSubpixels) {
 
 TEST(Render, DepthZeroTracesOnlyPrimaryAndShadowRays) {
   RayCounts rays;
-  render(everything_scene(), small(1, 0), Schedule{Backend::serial, 1, 1}, &rays);
+  render(test::glass_scene(), small(1, 0), Schedule{Backend::serial, 1, 1}, &rays);
   EXPECT_EQ(rays.reflection + rays.refraction, 0u);
 }
 
 TEST(Render, EveryPixelIsFiniteAndNonNegative) {
-  const Image img = render(everything_scene(), small(3, 6), Schedule{Backend::tbb, 2, 4});
+  const Image img = render(test::glass_scene(), small(3, 6), Schedule{Backend::tbb, 2, 4});
   for (float v : img.rgb) {
     ASSERT_TRUE(std::isfinite(v));
     ASSERT_GE(v, 0.0f);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/builtin_scene.h"
 #include "rt2/compiled_scene.h"
 #include "rt2/isa.h"
 #include "rt2/schedule.h"
@@ -130,6 +131,23 @@ inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max,
   }
   if (!h.found()) h.t = kInfinity;
   return h;
+}
+
+// The built-in scene with a glass sphere and a second light: every feature at once (glass,
+// mirror, specular, spheres, a plane, triangles, lights).
+inline Scene glass_scene() {
+  Scene s = make_default_scene();
+  Material glass;
+  glass.diffuse = vec4(0.05f, 0.05f, 0.05f);
+  glass.specular = vec4(0.8f, 0.8f, 0.8f);
+  glass.reflectivity = 0.1f;
+  glass.transparency = 0.85f;
+  glass.ior = 1.5f;
+  const std::uint32_t g = s.add_material("glass", glass);
+  s.spheres.push_back(Sphere{vec4(-0.6f, 0.3f, 0.4f), 0.3f});
+  s.sphere_materials.push_back(g);
+  set_light_count(s, 2);
+  return s;
 }
 
 // Renders `scene` through the whole pipeline (compile, the scene's camera, the schedule's
