@@ -13,6 +13,9 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/light.h"
+#include "rt2/light_bvh.h"
+#include "rt2/light_path.h"
 #include "rt2/material.h"
 #include "rt2/scene.h"
 
@@ -21,7 +24,9 @@ namespace rt2 {
 struct CompiledScene {
   Accel accel;
   std::vector<Material> materials;
-  std::vector<Light> lights;
+  std::vector<Light> lights;             // where they are this frame
+  LightBvh light_bvh;                    // over `lights`' spheres of influence
+  std::vector<LightPath> light_paths;    // where move_lights takes each light
   vec4 ambient;     // I_amb
   vec4 background;  // colour of rays that hit nothing
   vec4 origin;      // where these coordinates' origin is in the world (Scene::origin)
@@ -31,6 +36,11 @@ struct CompiledScene {
   // Validates `scene` (Scene::validate) and compiles it: the trees with `config`, the
   // triangles' `bvh_width(isa)` wide.
   static CompiledScene compile(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
+
+  // Moves every light to where its path is at `seconds` (light_path.h) and rebuilds
+  // the light tree with `threads` OpenMP threads (<= 0: all). Lights are the one part of a
+  // compiled scene that changes between frames; never call it while a frame renders.
+  LightBvh::BuildTimes move_lights(double seconds, int threads);
 };
 
 }  // namespace rt2

@@ -1,4 +1,4 @@
-// rt2/material.h — Phong materials (thesis 3.2) and point lights.
+// rt2/material.h — Phong materials (thesis 3.2).
 #pragma once
 
 #include <cstdint>
@@ -26,13 +26,6 @@ struct Material {
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.
   vec4 diffuse_at(const vec4& p) const;
-};
-
-struct Light {
-  vec4 position;                 // w = 0
-  vec4 color{1.0f, 1.0f, 1.0f};  // linear RGB
-  float intensity = 1.0f;
-  vec4 radiance() const { return color * intensity; }
 };
 
 }  // namespace rt2

@@ -49,6 +49,32 @@ inline std::uint32_t morton_cell(float c, float lo, float extent) {
 
 }  // namespace detail
 
+// The Morton codes of many points in one box: morton_code with the division by the extent
+// made a multiplication by 1024 / extent, computed once (the cells can differ from
+// morton_code's by rounding at their borders; the order stays monotone along each axis).
+class MortonGrid {
+ public:
+  explicit MortonGrid(const Aabb& bounds) : lo_(bounds.lo) {
+    const vec4 extent = bounds.extent();
+    for (int a = 0; a < 3; ++a) scale_[a] = extent[a] > 0.0f ? 1024.0f / extent[a] : 0.0f;
+  }
+  std::uint32_t code(const vec4& p) const {
+    return expand_bits_10(cell(p[0], 0)) << 2 | expand_bits_10(cell(p[1], 1)) << 1 |
+           expand_bits_10(cell(p[2], 2));
+  }
+
+ private:
+  // As detail::morton_cell: tested before the conversion (NaN, infinities, outside the box).
+  std::uint32_t cell(float c, int axis) const {
+    const float t = (c - lo_[axis]) * scale_[axis];
+    if (!(t > 0.0f)) return 0;
+    if (t >= 1023.0f) return 1023;
+    return static_cast<std::uint32_t>(t);
+  }
+  vec4 lo_;
+  float scale_[3];
+};
+
 // The 30-bit Morton code of p (lanes x y z; w ignored) in 1024 cells per axis of `bounds`,
 // laid out as above. Points outside the box clamp to its edge cells; see detail::morton_cell
 // for flat axes, NaN and infinities (never undefined behaviour).

@@ -104,6 +104,7 @@ void Scene::validate() const {
     check(finite(lights[i].position) && finite(lights[i].color) &&
               std::isfinite(lights[i].intensity) && lights[i].intensity >= 0.0f,
           "light " + std::to_string(i) + ": position, color and intensity must be finite (intensity >= 0)");
+    check(lights[i].range > 0.0f, "light " + std::to_string(i) + ": range must be > 0");
   }
   const auto n_mat = materials.size();
   for (std::size_t i = 0; i < spheres.size(); ++i) {
@@ -138,6 +139,10 @@ void recenter_on_camera(Scene& scene) {
   scene.origin += c;
   scene.camera.translate(-c);
   for (Light& l : scene.lights) l.position -= c;
+  if (scene.light_field) {
+    scene.light_field->box.lo -= c;
+    scene.light_field->box.hi -= c;
+  }
   for (Sphere& s : scene.spheres) s.center -= c;
   for (Plane& p : scene.planes) p.d += float(dot(p.n, c));
   for (Mesh& m : scene.meshes)
@@ -147,10 +152,21 @@ void recenter_on_camera(Scene& scene) {
 // Extra lights sit on a ring of radius 1.5 R around the scene's centre, at height
 // centre.y + R, where R is the bounding-sphere radius (1 for an empty scene). Light k of
 // the extra ones is at angle 2 pi k / extra + 0.3 (so the first is not on an axis), white,
-// with the intensity of the scene's first light (1 if it has none).
-void set_light_count(Scene& scene, std::size_t total) {
+// with the intensity of the scene's first light (1 if it has none). With a scene's light
+// field, the extra lights are the field's next ones instead.
+void set_light_count(Scene& scene, std::size_t total, std::optional<RangeInterval> range) {
   if (total <= scene.lights.size()) {
     scene.lights.resize(total);
+    return;
+  }
+  if (scene.light_field && scene.light_field->first <= scene.lights.size()) {
+    LightField field = *scene.light_field;
+    if (range) {
+      field.range_lo = range->lo;
+      field.range_hi = range->hi;
+    }
+    for (std::size_t k = scene.lights.size() - field.first; scene.lights.size() < total; ++k)
+      scene.lights.push_back(field.light(k));
     return;
   }
   const Aabb b = scene.bounds();
@@ -168,6 +184,10 @@ void set_light_count(Scene& scene, std::size_t total) {
     Light l;
     l.position = c + vec4(1.5f * r * std::cos(a), r, 1.5f * r * std::sin(a));
     l.intensity = intensity;
+    if (range) {  // spread over the interval by the golden ratio
+      const float f = float(std::fmod(double(k) * 0.6180339887498949, 1.0));
+      l.range = range->lo + f * (range->hi - range->lo);
+    }
     scene.lights.push_back(l);
   }
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "rt2/features.h"
 #include "rt2/geometry/plane.h"
 #include "rt2/geometry/sphere.h"
+#include "rt2/light.h"
+#include "rt2/light_field.h"
 #include "rt2/material.h"
 #include "rt2/mesh.h"
 
@@ -29,6 +32,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<std::string> material_names;  // parallel to materials
   std::vector<Light> lights;
+  // Where extra lights go (set_light_count): the scene's light field, if it has one. Its
+  // lights are lights[field.first ...].
+  std::optional<LightField> light_field;
 
   std::vector<Sphere> spheres;
   std::vector<std::uint32_t> sphere_materials;
@@ -66,8 +72,16 @@ struct Scene {
 // Planes keep their normal and move their offset: D' = D + N·c.
 void recenter_on_camera(Scene& scene);
 
+// An interval of light ranges, lo <= hi: each light's drawn uniformly in it.
+struct RangeInterval {
+  float lo = 1.0f, hi = 1.0f;
+};
+
 // Extra lights for `--lights N`: the scene's own lights first, then `total - existing`
-// lights placed deterministically on a ring above the scene's bounds (see scene.cpp).
-void set_light_count(Scene& scene, std::size_t total);
+// lights: the next lights of the scene's light field if it has one, else lights placed
+// deterministically on a ring above the scene's bounds (see scene.cpp). `range`, when
+// given, is where the extra lights' ranges are drawn from (else the field's, or none for
+// the ring).
+void set_light_count(Scene& scene, std::size_t total, std::optional<RangeInterval> range = {});
 
 }  // namespace rt2

@@ -469,13 +469,56 @@ void read_materials(const Reader& root, Scene& scene) {
 }
 
 void read_lights(const Reader& root, Scene& scene) {
-  for_each_table(root, "lights", {"position", "color", "intensity"}, [&](const Reader& r) {
+  for_each_table(root, "lights", {"position", "color", "intensity", "range"}, [&](const Reader& r) {
     Light l;
     l.position = r.vector("position", kAny);
     l.color = r.vector("color", l.color, kNonNegative);
     l.intensity = r.number("intensity", l.intensity, kNonNegative);
+    l.range = r.number("range", l.range, kPositive);
     scene.lights.push_back(l);
   });
+}
+
+// An integer in [lo, hi].
+std::int64_t integer(const Reader& r, std::string_view key, std::int64_t lo, std::int64_t hi) {
+  const toml::node& n = r.require(key);
+  const auto* v = n.as_integer();
+  if (!v) r.fail(n, r.name(key) + " must be an integer (got " + type_name(n) + ")");
+  if (v->get() < lo || v->get() > hi)
+    r.fail(n, r.name(key) + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                  "], got " + std::to_string(v->get()));
+  return v->get();
+}
+
+// [light_field]: `count` lights scattered in the box [min, max] (light_field.h), added after
+// the [[lights]].
+void read_light_field(const Reader& root, Scene& scene) {
+  if (!root.find("light_field")) return;
+  const Reader r = root.table("light_field",
+                              {"count", "min", "max", "range", "color", "intensity", "seed"});
+  LightField f;
+  const auto count = static_cast<std::size_t>(integer(r, "count", 0, 1'000'000));
+  f.box.lo = r.vector("min", kAny);
+  f.box.hi = r.vector("max", kAny);
+  for (int a = 0; a < 3; ++a)
+    if (!(f.box.lo[a] <= f.box.hi[a]))
+      r.fail(r.require("max"), r.name("max") + " must be >= min on every axis");
+  const toml::node& range = r.require("range");
+  if (const toml::array* a = range.as_array()) {
+    if (a->size() != 2)
+      r.fail(range, r.name("range") + " must be a number or an array of 2 numbers [lo, hi]");
+    f.range_lo = to_number(r.file(), *a->get(0), r.name("range") + "[0]", kPositive);
+    f.range_hi = to_number(r.file(), *a->get(1), r.name("range") + "[1]", kPositive);
+    if (!(f.range_lo <= f.range_hi)) r.fail(range, r.name("range") + " must have lo <= hi");
+  } else {
+    f.range_lo = f.range_hi = r.number("range", kPositive);
+  }
+  f.color = r.vector("color", f.color, kNonNegative);
+  f.intensity = r.number("intensity", f.intensity, kNonNegative);
+  if (r.find("seed")) f.seed = static_cast<std::uint64_t>(integer(r, "seed", 0, INT64_MAX));
+  f.first = scene.lights.size();
+  scene.light_field = f;
+  for (std::size_t k = 0; k < count; ++k) scene.lights.push_back(f.light(k));
 }
 
 void read_spheres(const Reader& root, Scene& scene) {
@@ -565,12 +608,14 @@ Scene read_toml_scene(const std::string& path) {
   TomlScreen(path, text).run();
   const toml::table doc = parse_toml(path, text);
   const Reader root(path, doc, "",
-                    {"camera", "world", "materials", "lights", "spheres", "planes", "meshes"});
+                    {"camera", "world", "materials", "lights", "light_field", "spheres", "planes",
+                     "meshes"});
   Scene scene;
   read_camera(root, scene);
   read_world(root, scene);
   read_materials(root, scene);  // first, so that objects can name them wherever they are
   read_lights(root, scene);
+  read_light_field(root, scene);
   read_spheres(root, scene);
   read_planes(root, scene);
   read_meshes(root, scene, fs::path(path).parent_path());

@@ -699,6 +699,57 @@ TEST(SceneIo, LoadSceneFramesABareObjAndDispatchesOnTheExtension) {
   expect_message(error_of([&] { load_scene(other); }), other, 0, "unknown file extension '.json'");
 }
 
+TEST(SceneIo, LightRangeAndLightFieldAreRead) {
+  TempDir dir;
+  const Scene s = load_text(dir, R"(
+[camera]
+position = [0, 1, 5]
+look_at = [0, 0, 0]
+[[lights]]
+position = [0, 5, 0]
+range = 2.5
+[[lights]]
+position = [0, 6, 0]
+[light_field]
+count = 1000
+min = [-2, 0, -1]
+max = [2, 3, 1]
+range = [0.5, 1.5]
+color = [1, 0.5, 0.25]
+intensity = 0.75
+seed = 7
+)");
+  ASSERT_EQ(s.lights.size(), 1002u);
+  EXPECT_FLOAT_EQ(s.lights[0].range, 2.5f);
+  EXPECT_FALSE(s.lights[1].has_range());
+  ASSERT_TRUE(s.light_field.has_value());
+  EXPECT_EQ(s.light_field->first, 2u);
+  for (std::size_t i = 2; i < s.lights.size(); ++i) {
+    const Light& l = s.lights[i];
+    ASSERT_GE(l.range, 0.5f);
+    ASSERT_LE(l.range, 1.5f);
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_GE(l.position[a], s.light_field->box.lo[a]);
+      ASSERT_LE(l.position[a], s.light_field->box.hi[a]);
+    }
+    ASSERT_FLOAT_EQ(l.intensity, 0.75f);
+    ASSERT_FLOAT_EQ(l.color[1], 0.5f);
+  }
+  // More lights (rt2cpr --lights) continue the field and keep its first lights in place; a
+  // given range applies to the new ones only.
+  Scene more = s;
+  set_light_count(more, 1500, RangeInterval{0.25f, 0.25f});
+  ASSERT_EQ(more.lights.size(), 1500u);
+  for (std::size_t i = 0; i < s.lights.size(); ++i)
+    ASSERT_EQ(float(dot(more.lights[i].position - s.lights[i].position,
+                        more.lights[i].position - s.lights[i].position)), 0.0f);
+  EXPECT_FLOAT_EQ(more.lights[1200].range, 0.25f);
+  EXPECT_FLOAT_EQ(more.lights[1001].range, s.lights[1001].range);
+  // Fewer lights keep the first ones.
+  set_light_count(more, 3);
+  EXPECT_EQ(more.lights.size(), 3u);
+}
+
 TEST(SceneIo, ExampleScenesLoad) {
   const Scene glass = load_scene(source_file("scenes/glass.toml"));
   EXPECT_EQ(glass.lights.size(), 2u);
