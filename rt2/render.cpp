@@ -23,6 +23,8 @@ void RenderSettings::validate() const {
     fail("passes must be in [1, subpixels = " + std::to_string(subpixels) + "], got " +
          std::to_string(passes));
   if (block < 1 || block > 256) fail("block must be in [1, 256], got " + std::to_string(block));
+  if (light_slices < 1 || light_slices > 256)
+    fail("light slices must be in [1, 256], got " + std::to_string(light_slices));
 }
 
 Renderer::Renderer(const CompiledScene& scene, const View& view)

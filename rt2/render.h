@@ -25,6 +25,20 @@
 
 namespace rt2 {
 
+// Which lights a shading point considers (light_bvh.h). Every mode gives the same image:
+// the lights a mode skips are those out of range, whose contribution is exactly 0.
+enum class LightCulling {
+  none,       // every light, tested one by one (brute force)
+  tiled,      // primary hits: the lists of their block (a 2-D tile of the image)
+  clustered,  // primary hits: the lists of their block's depth slice (a 3-D cluster)
+  bvh,        // every hit: a walk of the light tree from its point
+};
+// How tiled and clustered culling fill a tile's or cluster's list.
+enum class LightLists {
+  brute_force,  // every light's sphere against the cluster's box (the papers' classic)
+  bvh,          // a walk of the light tree with the cluster's box (the accelerated one)
+};
+
 struct RenderSettings {
   int width = 512;
   int height = 512;
@@ -44,10 +58,24 @@ struct RenderSettings {
   // BVH together where its rays allow (rt2/bvh/packet_traverse.h); false: every ray alone.
   // The image does not depend on it.
   bool packets = true;
+  // Lights: which ones each shading point considers (tiled and clustered culling use the
+  // lists for primary hits and the light tree for the others), how the lists are filled,
+  // and how many depth slices (1 ... 256) a block has for clustered culling: exponentially
+  // spaced between its nearest and farthest primary hit, as clustered shading slices the
+  // view frustum. None changes the image.
+  LightCulling light_culling = LightCulling::bvh;
+  LightLists light_lists = LightLists::bvh;
+  int light_slices = 16;
+  // false: no shadow rays; every light reaches every point that faces it (for measuring
+  // what shadows cost).
+  bool shadows = true;
+  // Time each stage of the kernel into RayCounts::stages (a clock read per stage and batch:
+  // about 1.7 % of the headline frame, so off unless asked for).
+  bool stage_times = false;
 
   // Throws rt2::Error for width/height < 1 or > 65535, subpixels < 1 or > 65536,
   // depth < 0 or > 1'000'000, min_weight NaN or outside [0, 1], passes < 1 or >
-  // subpixels, block < 1 or > 256.
+  // subpixels, block or light_slices < 1 or > 256.
   void validate() const;
 };
 
@@ -64,9 +92,43 @@ struct Tile {
 
 // Rays traced, by kind (primary rays are one per sample), with what the walks of the BVH
 // cost for each kind (nodes and leaf blocks of four triangles visited), as pbrt reports.
+// What the lights cost: shading points, the lights they considered (their lists: all of
+// them without culling) and the lights in range among those; and the light lists built for
+// tiles and clusters, with their total length.
+struct LightCounts {
+  std::uint64_t points = 0, considered = 0, in_range = 0, lists = 0, list_entries = 0;
+  LightCounts& operator+=(const LightCounts& o) {
+    points += o.points;
+    considered += o.considered;
+    in_range += o.in_range;
+    lists += o.lists;
+    list_entries += o.list_entries;
+    return *this;
+  }
+};
+
+// Nanoseconds spent in each stage of the kernel (tracer.h), summed over the threads, when
+// RenderSettings::stage_times is on:
+// generating primary rays, intersecting, finding each point's lights (lists and light-tree
+// walks), shading (surface points, light terms, secondary rays, film), shadow rays.
+struct StageTimes {
+  std::uint64_t generate = 0, intersect = 0, lights = 0, shade = 0, shadow = 0;
+  std::uint64_t total() const { return generate + intersect + lights + shade + shadow; }
+  StageTimes& operator+=(const StageTimes& o) {
+    generate += o.generate;
+    intersect += o.intersect;
+    lights += o.lights;
+    shade += o.shade;
+    shadow += o.shadow;
+    return *this;
+  }
+};
+
 struct RayCounts {
   std::uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
   TraversalCounts primary_walk, shadow_walk, secondary_walk;
+  LightCounts lights;
+  StageTimes stages;
   std::uint64_t total() const { return primary + shadow + reflection + refraction; }
   RayCounts& operator+=(const RayCounts& o) {
     primary += o.primary;
@@ -76,6 +138,8 @@ struct RayCounts {
     primary_walk += o.primary_walk;
     shadow_walk += o.shadow_walk;
     secondary_walk += o.secondary_walk;
+    lights += o.lights;
+    stages += o.stages;
     return *this;
   }
 };

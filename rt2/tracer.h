@@ -8,9 +8,13 @@
 //   2. intersect the batch (closest hit), packet by packet (secondary batches 16 rays at a
 //      time, in batch order): rt2/query.h's packet queries, or one ray at a time when
 //      RenderSettings::packets is off, with the same answers;
-//   3. shade the hits: the ambient term goes to the sample's colour at once; for each
-//      light the surface faces, the unshadowed Phong term goes into a batch of shadow rays;
-//      reflected and refracted rays whose weight passes min_weight go into the next batch;
+//   3. shade the hits: their surface points; the lights each point considers (all of
+//      them, or a list from light culling: per block or per depth slice of a block for
+//      primary hits, from a walk of the light tree for the others; RenderSettings::
+//      light_culling); the ambient term goes to the sample's colour at once; for each of
+//      those lights in range that the surface faces, the unshadowed Phong term goes into a
+//      batch of shadow rays; reflected and refracted rays whose weight passes min_weight go
+//      into the next batch;
 //   4. trace the shadow batch (transmittance; in packets of 16 rays to one light, grouped by
 //      a stable sort) and add each light's term times what passed, in batch order;
 //   5. repeat 2 ... 4 with the next batch until it is empty or `depth` is reached;
@@ -28,6 +32,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -57,17 +62,6 @@ struct ShadowRay {
   std::uint32_t light;  // index into CompiledScene::lights
 };
 
-// The batches of one thread, reused from block to block (no allocation once grown).
-struct Batches {
-  std::vector<PathRay> rays, next;
-  std::vector<std::uint32_t> packet_begin;  // the primary batch's packets (generate)
-  std::vector<ShadowRay> shadows;
-  std::vector<float> passed;              // per shadow ray: the light that passes
-  std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
-  std::vector<std::uint32_t> light_begin;
-  std::vector<vec4> colors;
-};
-
 // What shading needs to know about a hit.
 struct SurfacePoint {
   vec4 p;                   // on the surface, computed precisely (see offset.h)
@@ -77,6 +71,41 @@ struct SurfacePoint {
                             // rays start (offset.h)
   bool entering;            // the ray hit the outside (against the outward normal)
   std::uint32_t material;
+};
+
+// The lights a shading point considers: CompiledScene::lights[index[k]] for k < count, or
+// every light (index null, count = all).
+struct LightList {
+  const std::uint32_t* index = nullptr;
+  std::size_t count = 0;
+  std::uint32_t operator[](std::size_t k) const {
+    return index ? index[k] : static_cast<std::uint32_t>(k);
+  }
+};
+
+// A shadow ray's light and its index in the batch, for grouping the batch by light.
+struct LightRay {
+  std::uint32_t light, ray;
+};
+
+// The batches of one thread, reused from block to block (no allocation once grown).
+struct Batches {
+  std::vector<PathRay> rays, next;
+  std::vector<std::uint32_t> packet_begin;  // the primary batch's packets (generate)
+  std::vector<Hit> hits;                    // per ray of `rays`
+  std::vector<SurfacePoint> points;         // per ray of `rays` that hit
+  // Light lists: list k is light_items[list_begin[k], list_begin[k + 1]); the hit of ray
+  // i uses list list_of[i]. No lists: every hit considers every light.
+  std::vector<std::uint32_t> light_items, list_begin, list_of;
+  std::vector<std::uint32_t> found;     // one query's answer
+  std::vector<float> depth;             // clustered culling: per ray, its hit's depth
+  std::vector<Aabb> cluster_bounds;     // clustered culling: per slice
+  std::vector<ShadowRay> shadows;
+  std::vector<float> passed;              // per shadow ray: the light that passes
+  std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
+  std::vector<std::uint32_t> light_begin;
+  std::vector<LightRay> light_rays;
+  std::vector<vec4> colors;
 };
 
 inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
@@ -115,21 +144,27 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
   return s;
 }
 
-// Stage 3 for one hit: I_local = Ka I_amb now, and for each light that reaches the surface
-// the term Kd I (L·N) + Ks I (R·V)^n into the shadow batch, to be scaled by what passes
-// (thesis 3.2; SPEC "Shading").
+// Stage 3 for one hit: I_local = Ka I_amb now, and for each light of `lights` in range
+// that reaches the surface the term Kd I (L·N) + Ks I (R·V)^n (times the light's range
+// window, light.h) into the shadow batch, to be scaled by what passes (thesis 3.2; SPEC
+// "Shading"). `lights` holds every light in range, in scene order, whatever the culling.
 inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
-                  Batches& b, RayCounts& counts) {
+                  LightList lights, Batches& b, RayCounts& counts) {
   const Material& m = sc.materials[s.material];
   b.colors[r.sample] += r.weight * (m.ambient * sc.ambient);
-  if (sc.lights.empty()) return;
+  ++counts.lights.points;
+  counts.lights.considered += lights.count;
+  if (lights.count == 0) return;
   const vec4 kd = m.diffuse_at(s.p + sc.origin);  // textures live in world coordinates
   const vec4& origin = s.above;
   const vec4 view = -r.ray.dir;
-  for (std::uint32_t li = 0; li < sc.lights.size(); ++li) {
+  for (std::size_t k = 0; k < lights.count; ++k) {
+    const std::uint32_t li = lights[k];
     const Light& light = sc.lights[li];
     const vec4 to = light.position - origin;
     const float dist = std::sqrt(float(dot(to, to)));
+    if (!in_range(light, dist)) continue;  // contributes exactly 0
+    ++counts.lights.in_range;
     const vec4 l = to / dist;
     if (!(dot(l, s.ng) > 0.0f)) continue;  // the light is behind the surface (or at p)
     const float n_dot_l = dot(s.ns, l);
@@ -145,7 +180,8 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
     ShadowRay& sr = b.shadows.emplace_back();
     sr.ray.org = origin;
     sr.ray.dir = l;
-    sr.term = r.weight * (term * light.radiance());
+    sr.term = r.weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
+                                                    : light.radiance()));
     sr.distance = dist;
     sr.sample = r.sample;
     sr.light = li;
@@ -217,14 +253,14 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
       }
 }
 
-// Stages 2 and 3 for rays [begin, end) of b.rays (at most kPacketSize): their closest hits,
-// as one packet or one by one, then each ray shaded in order.
+// Stage 2 for rays [begin, end) of b.rays (at most kPacketSize): b.hits[i] = the closest
+// hit of ray i, found as one packet or one ray at a time.
 template <bool Watertight>
-void intersect_and_shade(const CompiledScene& sc, const RenderSettings& st, std::size_t begin,
-                         std::size_t end, Batches& b, RayCounts& counts, TraversalCounts& walk) {
+void intersect(const CompiledScene& sc, const RenderSettings& st, std::size_t begin,
+               std::size_t end, Batches& b, TraversalCounts& walk) {
   Ray rays[kPacketSize];
   float t_max[kPacketSize];
-  Hit hits[kPacketSize];
+  Hit* hits = b.hits.data() + begin;
   const int n = static_cast<int>(end - begin);
   for (int l = 0; l < n; ++l) {
     rays[l] = b.rays[begin + l].ray;
@@ -237,44 +273,187 @@ void intersect_and_shade(const CompiledScene& sc, const RenderSettings& st, std:
     for (int l = 0; l < n; ++l)
       hits[l] = closest_hit<Watertight>(sc.accel, rays[l], 0.0f, kInfinity, &walk);
   }
-  for (int l = 0; l < n; ++l) {
-    const PathRay& pr = b.rays[begin + l];
+}
+
+// Stage 3, first step: the surface point of every hit of the batch.
+inline void surface_points(const CompiledScene& sc, Batches& b) {
+  const std::size_t n = b.rays.size();
+  b.points.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (b.hits[i].found())
+      b.points[i] = surface_at(sc.accel, b.rays[i].ray, b.hits[i], sc.offset_scale);
+}
+
+// The depth slice (0 ... slices - 1) of depth z in [near, far]: exponentially spaced when
+// near > 0 (as clustered shading slices a frustum), evenly otherwise.
+inline int depth_slice(float z, float near, float far, int slices) {
+  if (!(far > near)) return 0;
+  const float x = near > 0.0f ? std::log(z / near) / std::log(far / near) * float(slices)
+                              : (z - near) / (far - near) * float(slices);
+  return x >= float(slices - 1) ? slices - 1 : (x > 0.0f ? int(x) : 0);
+}
+
+// Whether hits get light lists: culling is on and some light has a range (without one,
+// every light reaches everywhere).
+inline bool uses_light_lists(const Renderer& r) {
+  return r.settings().light_culling != LightCulling::none && r.scene().light_bvh.has_bounded();
+}
+
+// Stage 3, second step: the lights each hit considers (RenderSettings::light_culling), as
+// lists in b.light_items.
+inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts& counts) {
+  const CompiledScene& sc = r.scene();
+  const RenderSettings& st = r.settings();
+  const std::size_t n = b.rays.size();
+  b.light_items.clear();
+  b.list_begin.assign(1, 0);
+  b.list_of.resize(n);
+  const auto add_list = [&]() {
+    b.light_items.insert(b.light_items.end(), b.found.begin(), b.found.end());
+    b.list_begin.push_back(static_cast<std::uint32_t>(b.light_items.size()));
+    ++counts.lists;
+    counts.list_entries += b.found.size();
+    return static_cast<std::uint32_t>(b.list_begin.size() - 2);
+  };
+  const auto fill = [&](const Aabb& box) {
+    if (st.light_lists == LightLists::bvh)
+      sc.light_bvh.lights_near(box, b.found);
+    else
+      sc.light_bvh.lights_near_brute_force(box, b.found);
+  };
+  if (primary && st.light_culling == LightCulling::tiled) {
+    // One list for the block: the lights that reach its hits' bounds.
+    Aabb box;
+    for (std::size_t i = 0; i < n; ++i)
+      if (b.hits[i].found()) box.grow(b.points[i].above);
+    if (box.is_empty()) return;
+    fill(box);
+    const std::uint32_t list = add_list();
+    std::fill(b.list_of.begin(), b.list_of.end(), list);
+  } else if (primary && st.light_culling == LightCulling::clustered) {
+    // A list per depth slice of the block: the lights that reach the bounds of the slice's
+    // hits (the clusters the hits occupy: empty ones get none).
+    const vec4& eye = r.camera().position();
+    const vec4& forward = r.camera().forward();
+    b.depth.resize(n);
+    float near = kInfinity, far = -kInfinity;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!b.hits[i].found()) continue;
+      b.depth[i] = dot(b.points[i].above - eye, forward);
+      near = std::min(near, b.depth[i]);
+      far = std::max(far, b.depth[i]);
+    }
+    const int slices = st.light_slices;
+    b.cluster_bounds.assign(static_cast<std::size_t>(slices), Aabb());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!b.hits[i].found()) continue;
+      const int k = depth_slice(b.depth[i], near, far, slices);
+      b.list_of[i] = static_cast<std::uint32_t>(k);
+      b.cluster_bounds[static_cast<std::size_t>(k)].grow(b.points[i].above);
+    }
+    std::uint32_t slice_list[256];
+    for (int k = 0; k < slices; ++k) {
+      if (b.cluster_bounds[static_cast<std::size_t>(k)].is_empty()) continue;
+      fill(b.cluster_bounds[static_cast<std::size_t>(k)]);
+      slice_list[k] = add_list();
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (b.hits[i].found()) b.list_of[i] = slice_list[b.list_of[i]];
+  } else {
+    // A walk of the light tree from each hit's point.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!b.hits[i].found()) continue;
+      sc.light_bvh.lights_near(b.points[i].above, b.found);
+      b.list_of[i] = add_list();
+    }
+  }
+}
+
+// Stage 3, last step: each hit shaded with its lights and its secondary rays spawned; a
+// miss takes the background. With lists, the surface points are b.points (the first step
+// made them, the second used them); without, every hit considers every light and its
+// surface point is made here (the first two steps are skipped: one pass over the hits).
+inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& counts) {
+  const CompiledScene& sc = r.scene();
+  for (std::size_t i = 0; i < b.rays.size(); ++i) {
+    const PathRay& pr = b.rays[i];
     counts.reflection += pr.kind == RayKind::reflection;
     counts.refraction += pr.kind == RayKind::refraction;
-    if (!hits[l].found()) {
+    if (!b.hits[i].found()) {
       b.colors[pr.sample] += pr.weight * sc.background;
       continue;
     }
-    const SurfacePoint s = surface_at(sc.accel, pr.ray, hits[l], sc.offset_scale);
-    shade(sc, pr, s, b, counts);
-    spawn(sc, st, pr, s, b);
+    if (lists) {
+      const std::uint32_t k = b.list_of[i];
+      const LightList lights{b.light_items.data() + b.list_begin[k],
+                             b.list_begin[k + 1] - b.list_begin[k]};
+      shade(sc, pr, b.points[i], lights, b, counts);
+      spawn(sc, r.settings(), pr, b.points[i], b);
+    } else {
+      const SurfacePoint s = surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale);
+      shade(sc, pr, s, LightList{nullptr, sc.lights.size()}, b, counts);
+      spawn(sc, r.settings(), pr, s, b);
+    }
   }
 }
 
 // Stage 4: b.passed[i] = the light that passes along shadow ray i. With packets, the rays
 // of each light are traced together (rays to one light from neighbouring points are
-// coherent), 16 at a time in batch order.
+// coherent), 16 at a time in batch order; a light with fewer than kMinShadowPacket rays
+// (many small lights, each reaching a few points) has them traced one by one.
+inline constexpr std::size_t kMinShadowPacket = 4;
+
 template <bool Watertight>
 void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b,
                    TraversalCounts& walk) {
   const std::size_t n = b.shadows.size();
   b.passed.resize(n);
-  if (!st.packets) {
-    for (std::size_t i = 0; i < n; ++i)
-      b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
-                                              b.shadows[i].distance, &walk);
+  if (!st.shadows) {
+    std::fill(b.passed.begin(), b.passed.end(), 1.0f);
     return;
   }
-  // Counting sort by light, stable.
-  b.light_begin.assign(sc.lights.size() + 1, 0);
-  for (const ShadowRay& sr : b.shadows) ++b.light_begin[sr.light + 1];
-  for (std::size_t l = 1; l < b.light_begin.size(); ++l) b.light_begin[l] += b.light_begin[l - 1];
+  const auto one = [&](std::size_t i) {
+    b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
+                                            b.shadows[i].distance, &walk);
+  };
+  if (!st.packets) {
+    for (std::size_t i = 0; i < n; ++i) one(i);
+    return;
+  }
+  // b.by_light: the rays grouped by light, stable; b.light_begin: the ends of the groups.
+  // A counting sort over the lights when there are fewer lights than rays, else a sort of
+  // the rays (whose cost does not grow with the scene's light count).
   b.by_light.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    b.by_light[b.light_begin[b.shadows[i].light]++] = static_cast<std::uint32_t>(i);
-  // light_begin[l] is now the end of light l's run: runs are [end of l - 1, end of l).
+  b.light_begin.clear();
+  if (sc.lights.size() <= n) {
+    b.light_begin.assign(sc.lights.size() + 1, 0);
+    for (const ShadowRay& sr : b.shadows) ++b.light_begin[sr.light + 1];
+    for (std::size_t l = 1; l < b.light_begin.size(); ++l)
+      b.light_begin[l] += b.light_begin[l - 1];
+    for (std::size_t i = 0; i < n; ++i)
+      b.by_light[b.light_begin[b.shadows[i].light]++] = static_cast<std::uint32_t>(i);
+    // light_begin[l] is now the end of light l's run.
+  } else {
+    // Sorted by (light, ray): stable by construction. (A sort of a type of this namespace:
+    // std::sort of plain integers would be instantiated here and in the portable code
+    // alike, and the linker could keep this instruction set's copy for both.)
+    b.light_rays.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      b.light_rays[i] = {b.shadows[i].light, static_cast<std::uint32_t>(i)};
+    std::sort(b.light_rays.begin(), b.light_rays.end(), [](const LightRay& x, const LightRay& y) {
+      return x.light < y.light || (x.light == y.light && x.ray < y.ray);
+    });
+    for (std::size_t k = 0; k < n; ++k) b.by_light[k] = b.light_rays[k].ray;
+    for (std::size_t k = 1; k <= n; ++k)
+      if (k == n || b.light_rays[k].light != b.light_rays[k - 1].light)
+        b.light_begin.push_back(static_cast<std::uint32_t>(k));
+  }
   std::size_t run = 0;
   for (const std::uint32_t run_end : b.light_begin) {
+    if (run_end - run < kMinShadowPacket) {
+      for (; run < run_end; ++run) one(b.by_light[run]);
+      continue;
+    }
     for (; run < run_end; run += kPacketSize) {
       const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, run_end - run));
       Ray rays[kPacketSize];
@@ -293,12 +472,24 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
 }
 
 // Samples [s0, s1) of the pixels of `block` (at most RenderSettings::block squared), into
-// the film.
+// the film, each stage's time added to counts.stages when RenderSettings::stage_times.
 template <bool Watertight>
 void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& film,
                   Batches& b, RayCounts& counts) {
+  using Clock = std::chrono::steady_clock;
+  const bool timed = r.settings().stage_times;
+  Clock::time_point t = timed ? Clock::now() : Clock::time_point();
+  const auto lap = [&t, timed](std::uint64_t& stage) {
+    if (!timed) return;
+    const Clock::time_point now = Clock::now();
+    stage += static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(now - t).count());
+    t = now;
+  };
+  StageTimes& times = counts.stages;
   const CompiledScene& sc = r.scene();
   const RenderSettings& st = r.settings();
+  const bool lists = uses_light_lists(r);
   const int samples = s1 - s0;
   const std::size_t n = std::size_t(block.x1 - block.x0) * std::size_t(block.y1 - block.y0) *
                         std::size_t(samples);
@@ -306,23 +497,36 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   film.prefetch(block.x0, block.y0, block.x1, block.y1);  // for step 6
   generate(r, block, s0, s1, b);  // 1.
   counts.primary += n;
+  lap(times.generate);
   for (bool primary = true; !b.rays.empty(); primary = false) {
     b.next.clear();
     b.shadows.clear();
-    // 2. intersect, 3. shade: the primary batch in its packets, the others 16 rays at a time
+    // 2. intersect: the primary batch in its packets, the others 16 rays at a time
+    b.hits.resize(b.rays.size());
     if (primary) {
       for (std::size_t k = 0; k + 1 < b.packet_begin.size(); ++k)
-        intersect_and_shade<Watertight>(sc, st, b.packet_begin[k], b.packet_begin[k + 1], b,
-                                        counts, counts.primary_walk);
+        intersect<Watertight>(sc, st, b.packet_begin[k], b.packet_begin[k + 1], b,
+                              counts.primary_walk);
     } else {
       for (std::size_t i = 0; i < b.rays.size(); i += kPacketSize)
-        intersect_and_shade<Watertight>(sc, st, i, std::min(i + kPacketSize, b.rays.size()), b,
-                                        counts, counts.secondary_walk);
+        intersect<Watertight>(sc, st, i, std::min(i + kPacketSize, b.rays.size()), b,
+                              counts.secondary_walk);
     }
+    lap(times.intersect);
+    // 3. shade: surface points, their lights, the terms and the next batch
+    if (lists) {
+      surface_points(sc, b);
+      lap(times.shade);
+      find_lights(r, primary, b, counts.lights);
+      lap(times.lights);
+    }
+    shade_hits(r, lists, b, counts);
+    lap(times.shade);
     // 4. shadows, each sample's terms added in batch order
     trace_shadows<Watertight>(sc, st, b, counts.shadow_walk);
     for (std::size_t i = 0; i < b.shadows.size(); ++i)
       if (b.passed[i] != 0.0f) b.colors[b.shadows[i].sample] += b.shadows[i].term * b.passed[i];
+    lap(times.shadow);
     // 5. next depth
     std::swap(b.rays, b.next);
   }
@@ -331,6 +535,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   for (int y = block.y0; y < block.y1; ++y)
     for (int x = block.x0; x < block.x1; ++x)
       for (int k = 0; k < samples; ++k) film.add(x, y, b.colors[i++]);
+  lap(times.shade);
 }
 
 }  // namespace detail

@@ -50,13 +50,13 @@ int run(const Options& o) {
 
   auto t0 = Clock::now();
   rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
-  if (o.lights >= 0) rt2::set_light_count(scene, static_cast<std::size_t>(o.lights));
+  if (o.lights >= 0) rt2::set_light_count(scene, static_cast<std::size_t>(o.lights), o.light_range);
   scene.validate();
   rt2::recenter_on_camera(scene);  // full float precision where the pixels come from
   const double load_ms = ms_since(t0);
 
   t0 = Clock::now();
-  const rt2::CompiledScene compiled = rt2::CompiledScene::compile(scene, o.bvh, o.isa);
+  rt2::CompiledScene compiled = rt2::CompiledScene::compile(scene, o.bvh, o.isa);
   const double build_ms = ms_since(t0);
   const rt2::Renderer renderer(compiled, rt2::View{scene.camera, o.render});
 
@@ -72,6 +72,9 @@ int run(const Options& o) {
     if (f > 0) film.clear();
     rt2::FrameResult frame;
     const auto start = Clock::now();
+    // The frame's lights: moved and their tree rebuilt, inside the frame's time.
+    if (o.animate_lights)
+      report.add_light_update(compiled.move_lights(f / 30.0, rt2::effective_threads(o.schedule)));
     int done = 0;
     double last_pass_ms = 0.0;
     for (int p = 0; p < passes; ++p) {

@@ -68,6 +68,31 @@ void check_paths(const Options& o, Given&& given) {
         throw rt2::Error("--output " + o.output + " is the same file as " + flag + " " + *other);
 }
 
+// --light-range: "R" or "LO,HI", each in (0, 1e15], LO <= HI.
+rt2::RangeInterval parse_range_interval(const std::string& text) {
+  const auto fail = [&]() -> rt2::RangeInterval {
+    throw rt2::Error("light-range must be R or LO,HI with 0 < LO <= HI <= 1e15, got '" + text +
+                     "'");
+  };
+  const auto number = [&](const std::string& t) {
+    std::size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(t, &used);
+    } catch (const std::exception&) {
+      fail();
+    }
+    if (used != t.size() || !(v > 0.0f && v <= 1e15f)) fail();
+    return v;
+  };
+  const std::size_t comma = text.find(',');
+  rt2::RangeInterval r;
+  r.lo = number(text.substr(0, comma));
+  r.hi = comma == std::string::npos ? r.lo : number(text.substr(comma + 1));
+  if (!(r.lo <= r.hi)) fail();
+  return r;
+}
+
 void apply_preset(const std::string& name, Options& o) {
   const Preset& p = kPresets.at(name);
   o.render.width = p.width;
@@ -95,7 +120,10 @@ std::optional<Options> parse_options(int argc, char** argv) {
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
-              isa = rt2::isa_name(o.isa), packets = "on", positional_scene;
+              isa = rt2::isa_name(o.isa), packets = "on", positional_scene,
+              light_culling = "bvh", light_lists = "bvh", shadows = "on";
+  int light_slices = o.render.light_slices;
+  std::string light_range;
   bool version = false;
 
   app.add_option("scene_file", positional_scene, "the scene, as with --scene")
@@ -111,6 +139,21 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--min-weight", min_weight, "skip secondary rays weighing <= this [0, 1]");
   app.add_option("--lights", lights, "total number of lights (scene's first, then extra ones)")
       ->default_str("the scene's own");
+  app.add_option("--light-range", light_range, "range R (or LO,HI: uniform) of the extra "
+                                               "lights of --lights; light fades to 0 there")
+      ->default_str("the light field's, else none");
+  app.add_option("--light-culling", light_culling,
+                 "lights each point considers: none (all) | tiled | clustered (per block, per "
+                 "depth slice) | bvh (light tree per point); the image is the same");
+  app.add_option("--light-lists", light_lists, "how tiled/clustered lists are filled: bvh | "
+                                               "brute-force");
+  app.add_option("--light-slices", light_slices, "clustered: depth slices per block (1 ... 256)");
+  app.add_flag("--animate-lights", o.animate_lights,
+               "move every light along its path (frame f at f/30 s), light tree rebuilt each frame");
+  app.add_option("--shadows", shadows, "on | off: no shadow rays (every light reaches)");
+  app.add_flag("--stage-times", o.render.stage_times,
+               "time the kernel's stages (generate, intersect, lights, shade, shadow; ~2 % "
+               "slower)");
   app.add_option("--leaf-size", leaf, "BVH maximum primitives per leaf (>= 1)");
   app.add_option("--split", split, "BVH split: sah | midpoint");
   app.add_flag("--no-bvh", o.no_bvh, "no BVH: test every primitive (one leaf holds all)");
@@ -189,6 +232,20 @@ std::optional<Options> parse_options(int argc, char** argv) {
   if (triangle_test != "fast" && triangle_test != "watertight")
     throw rt2::Error("unknown triangle test '" + triangle_test + "' (expected fast or watertight)");
   o.render.watertight = triangle_test == "watertight";
+  if (light_culling == "none") o.render.light_culling = rt2::LightCulling::none;
+  else if (light_culling == "tiled") o.render.light_culling = rt2::LightCulling::tiled;
+  else if (light_culling == "clustered") o.render.light_culling = rt2::LightCulling::clustered;
+  else if (light_culling == "bvh") o.render.light_culling = rt2::LightCulling::bvh;
+  else throw rt2::Error("unknown --light-culling '" + light_culling +
+                        "' (expected none, tiled, clustered or bvh)");
+  if (light_lists == "bvh") o.render.light_lists = rt2::LightLists::bvh;
+  else if (light_lists == "brute-force") o.render.light_lists = rt2::LightLists::brute_force;
+  else throw rt2::Error("unknown --light-lists '" + light_lists + "' (expected bvh or brute-force)");
+  o.render.light_slices = light_slices;
+  if (shadows != "on" && shadows != "off")
+    throw rt2::Error("unknown --shadows '" + shadows + "' (expected on or off)");
+  o.render.shadows = shadows == "on";
+  if (given("--light-range")) o.light_range = parse_range_interval(light_range);
 
   if (split == "sah") o.bvh.split = rt2::Split::sah;
   else if (split == "midpoint") o.bvh.split = rt2::Split::midpoint;

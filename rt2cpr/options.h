@@ -8,6 +8,7 @@
 #include "rt2/bvh/node.h"
 #include "rt2/isa.h"
 #include "rt2/render.h"
+#include "rt2/scene.h"
 #include "rt2/schedule.h"
 
 namespace rt2cpr {
@@ -17,6 +18,8 @@ struct Options {
   std::string preset;  // low | middle | hard | veryhard, or empty
   rt2::RenderSettings render;
   int lights = -1;     // total light count; -1: the scene's own lights
+  std::optional<rt2::RangeInterval> light_range;  // ranges of the extra lights of --lights
+  bool animate_lights = false;  // frame f: lights where their paths are at f / 30 s
   rt2::BvhConfig bvh;
   rt2::Isa isa = rt2::best_isa();  // the ray kernels' instruction set (--isa)
   bool no_bvh = false;  // one leaf holding every primitive (brute force)

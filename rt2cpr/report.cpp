@@ -42,6 +42,30 @@ double json_float(float v) {
   return std::strtod(buf, nullptr);
 }
 
+const char* light_culling_name(rt2::LightCulling c) {
+  switch (c) {
+    case rt2::LightCulling::none: return "none";
+    case rt2::LightCulling::tiled: return "tiled";
+    case rt2::LightCulling::clustered: return "clustered";
+    case rt2::LightCulling::bvh: return "bvh";
+  }
+  return "?";
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// The median over frames of one field of each frame's record, in ms.
+template <class T, class F>
+double median_of(const std::vector<T>& frames, F field) {
+  std::vector<double> v;
+  for (const T& f : frames) v.push_back(field(f));
+  return median(v);
+}
+
 std::string host_name() {
   char buf[256] = {};
   if (::gethostname(buf, sizeof buf - 1) != 0) return "unknown";
@@ -78,6 +102,15 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
       {"passes", st.passes},
       {"block", st.block},
       {"packets", st.packets},
+      {"light_culling", light_culling_name(st.light_culling)},
+      {"light_lists", st.light_lists == rt2::LightLists::bvh ? "bvh" : "brute-force"},
+      {"light_slices", st.light_slices},
+      {"shadows", st.shadows},
+      {"stage_times", st.stage_times},
+      {"animate_lights", o.animate_lights},
+      {"lights_with_range", compiled.lights.size() - compiled.light_bvh.unbounded().size()},
+      {"light_bvh_levels", compiled.light_bvh.levels()},
+      {"light_bvh_bytes", compiled.light_bvh.bytes()},
       {"tile", o.schedule.tile},
       {"time_budget_s", o.time_budget},
       {"triangles", accel.tris.size()},
@@ -105,15 +138,11 @@ void Report::add_frame(const rt2::FrameResult& r, int passes) {
   passes_ = passes;
   nonfinite_ = r.nonfinite_pixels;
   frame_ms_.push_back(r.ms);
-  rays_ = r.rays;  // identical every frame
+  rays_ = r.rays;  // identical every frame unless the lights move
+  stages_.push_back(r.rays.stages);
 }
 
-double Report::median_ms() const {
-  std::vector<double> v = frame_ms_;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
+double Report::median_ms() const { return median(frame_ms_); }
 
 void Report::compare(const rt2::Image& image, const rt2::Image& reference) {
   const rt2::ImageError e = rt2::compare_images(image, reference);
@@ -176,6 +205,30 @@ void Report::print_summary() const {
               in_packets(rays_.primary_walk, rays_.primary),
               in_packets(rays_.shadow_walk, rays_.shadow),
               in_packets(rays_.secondary_walk, rays_.reflection + rays_.refraction));
+  const rt2::LightCounts& l = rays_.lights;
+  if (l.points > 0 && j["lights"].get<std::size_t>() > 0) {
+    std::printf("lights per shading point: %.2f considered, %.2f in range (culling %s",
+                double(l.considered) / double(l.points), double(l.in_range) / double(l.points),
+                j["light_culling"].get<std::string>().c_str());
+    if (l.lists > 0)
+      std::printf("; %llu lists of %.1f lights", static_cast<unsigned long long>(l.lists),
+                  double(l.list_entries) / double(l.lists));
+    std::printf(")\n");
+  }
+  if (j.contains("stage_ms")) {
+    const auto& sm = j["stage_ms"];
+    std::printf("stages, thread-ms per frame: generate %.2f, intersect %.2f, lights %.2f, shade "
+                "%.2f, shadow %.2f\n",
+                sm["generate"].get<double>(), sm["intersect"].get<double>(),
+                sm["lights"].get<double>(), sm["shade"].get<double>(), sm["shadow"].get<double>());
+  }
+  if (j.contains("light_update_ms")) {
+    const auto& u = j["light_update_ms"];
+    std::printf("light update per frame: %.2f ms (move %.2f, bounds %.2f, Morton %.2f, sort "
+                "%.2f, tree %.2f)\n",
+                u["total"].get<double>(), u["move"].get<double>(), u["bounds"].get<double>(),
+                u["morton"].get<double>(), u["sort"].get<double>(), u["tree"].get<double>());
+  }
   if (passes_ < j["passes"].get<int>())
     std::printf("time budget: %d of %d passes rendered\n", passes_, j["passes"].get<int>());
   if (nonfinite_ > 0)
@@ -218,6 +271,32 @@ nlohmann::json Report::json() const {
                     {"shadow", walk(rays_.shadow_walk)},
                     {"secondary", walk(rays_.secondary_walk)}};
   j["mrays_per_s"] = med > 0 ? double(rays_.total()) / (med * 1e3) : 0.0;
+  const rt2::LightCounts& l = rays_.lights;
+  j["light_counts"] = {{"shading_points", l.points},
+                       {"considered", l.considered},
+                       {"in_range", l.in_range},
+                       {"lists", l.lists},
+                       {"list_entries", l.list_entries}};
+  const auto stage = [&](std::uint64_t rt2::StageTimes::*field) {
+    return median_of(stages_, [&](const rt2::StageTimes& s) { return double(s.*field) * 1e-6; });
+  };
+  if (j_["stage_times"].get<bool>())
+    j["stage_ms"] = {{"generate", stage(&rt2::StageTimes::generate)},
+                     {"intersect", stage(&rt2::StageTimes::intersect)},
+                     {"lights", stage(&rt2::StageTimes::lights)},
+                     {"shade", stage(&rt2::StageTimes::shade)},
+                     {"shadow", stage(&rt2::StageTimes::shadow)}};
+  if (!light_updates_.empty()) {
+    using B = rt2::LightBvh::BuildTimes;
+    const auto step = [&](double B::*field) {
+      return median_of(light_updates_, [&](const B& b) { return b.*field; });
+    };
+    j["light_update_ms"] = {
+        {"move", step(&B::move_ms)},     {"bounds", step(&B::bounds_ms)},
+        {"morton", step(&B::morton_ms)}, {"sort", step(&B::sort_ms)},
+        {"tree", step(&B::tree_ms)},
+        {"total", median_of(light_updates_, [](const B& b) { return b.total_ms(); })}};
+  }
   return j;
 }
 

@@ -21,6 +21,8 @@ class Report {
          const rt2::Renderer& renderer, double load_ms, double build_ms);
   // A frame, and how many of its passes were rendered (fewer under --time-budget).
   void add_frame(const rt2::FrameResult& r, int passes);
+  // A frame's light update (--animate-lights): moving the lights and rebuilding their tree.
+  void add_light_update(const rt2::LightBvh::BuildTimes& t) { light_updates_.push_back(t); }
   // Image error of the last frame against a reference of the same size (RMSE, PSNR, SSIM).
   void compare(const rt2::Image& image, const rt2::Image& reference);
   void print_setup() const;
@@ -31,7 +33,9 @@ class Report {
   double median_ms() const;
   nlohmann::json j_;
   std::vector<double> frame_ms_;
-  rt2::RayCounts rays_;
+  rt2::RayCounts rays_;                        // the last frame's
+  std::vector<rt2::StageTimes> stages_;         // per frame
+  std::vector<rt2::LightBvh::BuildTimes> light_updates_;  // per frame, --animate-lights
   int passes_ = 0;
   std::uint64_t nonfinite_ = 0;
 };

@@ -166,6 +166,40 @@ TEST_F(Cli, StatsCountTheBvhWalkOfEachKindOfRay) {
   }
 }
 
+// Many lights: every culling mode writes the image of none; moving lights are rebuilt each
+// frame and the stats say what it cost; bad values fail with one line.
+TEST_F(Cli, LightCullingModesWriteTheSameImageAndStatsCountLightsAndUpdates) {
+  const std::string base = std::string(kTiny) + " --lights 300 --light-range 0.3,0.8 ";
+  ASSERT_EQ(run(base + "--light-culling none --output " + path("none.exr")).status, 0);
+  for (const char* mode : {"tiled --light-lists brute-force", "clustered --light-slices 3", "bvh"}) {
+    const Outcome r = run(base + "--light-culling " + mode + " --output " + path("m.exr"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(rt2::read_image(path("none.exr")).rgb, rt2::read_image(path("m.exr")).rgb) << mode;
+  }
+  const Outcome r = run(base + "--light-culling clustered --animate-lights --stage-times --frames 3 "
+                        "--stats " + path("s.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["lights"], 300);
+  EXPECT_EQ(j["lights_with_range"], 299);  // the scene's own light has none
+  EXPECT_EQ(j["light_culling"], "clustered");
+  EXPECT_GT(j["light_counts"]["lists"].get<std::uint64_t>(), 0u);
+  EXPECT_GE(j["light_counts"]["considered"].get<std::uint64_t>(),
+            j["light_counts"]["in_range"].get<std::uint64_t>());
+  for (const char* step : {"move", "bounds", "morton", "sort", "tree", "total"})
+    EXPECT_TRUE(j["light_update_ms"].contains(step)) << step;
+  for (const char* stage : {"generate", "intersect", "lights", "shade", "shadow"})
+    EXPECT_TRUE(j["stage_ms"].contains(stage)) << stage;
+  expect_clean_failure(run("--light-culling octree"), "octree");
+  expect_clean_failure(run("--light-lists magic"), "magic");
+  expect_clean_failure(run("--light-slices 0"), "light slices");
+  expect_clean_failure(run("--light-range 0"), "light-range");
+  expect_clean_failure(run("--light-range 2,1"), "light-range");
+  expect_clean_failure(run("--light-range 1,x"), "light-range");
+  expect_clean_failure(run("--light-range nan"), "light-range");
+  expect_clean_failure(run("--shadows maybe"), "maybe");
+}
+
 TEST_F(Cli, AnObjAloneIsFramedAndRendered) {
   write("tri.obj", "v -1 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0.5 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
   const Outcome r = run(std::string(kTiny) + " --scene " + path("tri.obj") + " --output " + path("t.png"));
