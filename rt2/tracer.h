@@ -16,7 +16,9 @@
 //      batch of shadow rays; reflected and refracted rays whose weight passes min_weight go
 //      into the next batch;
 //   4. trace the shadow batch (transmittance; in packets of 16 rays to one light, grouped by
-//      a stable sort) and add each light's term times what passed, in batch order;
+//      a stable sort) and add each light's term times what passed, in batch order; a ray
+//      from a tile or cluster to a light it provably sees whole (cluster_visibility.h) is
+//      not traced: it passes 1, as its walk would return;
 //   5. repeat 2 ... 4 with the next batch until it is empty or `depth` is reached;
 //   6. add each sample's colour to the film, samples in index order.
 // A ray's contribution is its weight (the product of the Kr / Kt factors along its path)
@@ -36,6 +38,7 @@
 #include <cmath>
 #include <vector>
 
+#include "rt2/cluster_visibility.h"
 #include "rt2/offset.h"
 #include "rt2/optics.h"
 #include "rt2/query.h"
@@ -60,6 +63,7 @@ struct ShadowRay {
   float distance;
   std::uint32_t sample;
   std::uint32_t light;  // index into CompiledScene::lights
+  bool unoccluded;      // proven to pass whole (cluster_visibility.h): not traced
 };
 
 // What shading needs to know about a hit.
@@ -78,6 +82,9 @@ struct SurfacePoint {
 struct LightList {
   const std::uint32_t* index = nullptr;
   std::size_t count = 0;
+  // Per light of the list, whether every shadow ray from the list's cluster to it provably
+  // meets nothing (cluster_visibility.h); null: nothing proven.
+  const std::uint8_t* sees = nullptr;
   std::uint32_t operator[](std::size_t k) const {
     return index ? index[k] : static_cast<std::uint32_t>(k);
   }
@@ -97,6 +104,9 @@ struct Batches {
   // Light lists: list k is light_items[list_begin[k], list_begin[k + 1]); the hit of ray
   // i uses list list_of[i]. No lists: every hit considers every light.
   std::vector<std::uint32_t> light_items, list_begin, list_of;
+  std::vector<std::uint8_t> list_sees;  // parallel to light_items (see LightList::sees)
+  ClusterVisibility visibility;
+  std::vector<std::uint32_t> to_trace;  // the shadow rays to trace
   std::vector<std::uint32_t> found;     // one query's answer
   std::vector<float> depth;             // clustered culling: per ray, its hit's depth
   std::vector<Aabb> cluster_bounds;     // clustered culling: per slice
@@ -169,7 +179,8 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
     if (!(dot(l, s.ng) > 0.0f)) continue;  // the light is behind the surface (or at p)
     const float n_dot_l = dot(s.ns, l);
     if (!(n_dot_l > 0.0f)) continue;
-    ++counts.shadow;
+    const bool unoccluded = lights.sees && lights.sees[k];
+    ++(unoccluded ? counts.lights.unoccluded : counts.shadow);
     vec4 term = kd * n_dot_l;
     if (m.has_specular()) {
       const float r_dot_v = dot(2.0f * n_dot_l * s.ns - l, view);  // R = reflect(-L, N)
@@ -185,6 +196,7 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
     sr.distance = dist;
     sr.sample = r.sample;
     sr.light = li;
+    sr.unoccluded = unoccluded;
   }
 }
 
@@ -308,7 +320,26 @@ inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts
   b.light_items.clear();
   b.list_begin.assign(1, 0);
   b.list_of.resize(n);
+  b.list_sees.clear();
+  // A list for the hits inside `cluster`: its lights, and which of them every hit there
+  // provably sees (when shadow rays are traced at all).
+  const auto add_cluster_list = [&](const Aabb& cluster) {
+    b.list_sees.resize(b.list_sees.size() + b.found.size(), 0);
+    if (st.shadows) {
+      Aabb reach = cluster;
+      for (const std::uint32_t li : b.found)
+        if (sc.lights[li].has_range()) reach.grow(sc.lights[li].position);
+      b.visibility.gather(sc.accel, cluster, reach);
+      std::uint8_t* sees = b.list_sees.data() + b.light_items.size();
+      for (std::size_t k = 0; k < b.found.size(); ++k) {
+        const Light& l = sc.lights[b.found[k]];
+        sees[k] = l.has_range() && b.visibility.sees(l.position);
+      }
+    }
+  };
   const auto add_list = [&]() {
+    if (b.list_sees.size() < b.light_items.size() + b.found.size())
+      b.list_sees.resize(b.light_items.size() + b.found.size(), 0);
     b.light_items.insert(b.light_items.end(), b.found.begin(), b.found.end());
     b.list_begin.push_back(static_cast<std::uint32_t>(b.light_items.size()));
     ++counts.lists;
@@ -328,6 +359,7 @@ inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts
       if (b.hits[i].found()) box.grow(b.points[i].above);
     if (box.is_empty()) return;
     fill(box);
+    add_cluster_list(box);
     const std::uint32_t list = add_list();
     std::fill(b.list_of.begin(), b.list_of.end(), list);
   } else if (primary && st.light_culling == LightCulling::clustered) {
@@ -355,6 +387,7 @@ inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts
     for (int k = 0; k < slices; ++k) {
       if (b.cluster_bounds[static_cast<std::size_t>(k)].is_empty()) continue;
       fill(b.cluster_bounds[static_cast<std::size_t>(k)]);
+      add_cluster_list(b.cluster_bounds[static_cast<std::size_t>(k)]);
       slice_list[k] = add_list();
     }
     for (std::size_t i = 0; i < n; ++i)
@@ -386,7 +419,8 @@ inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& cou
     if (lists) {
       const std::uint32_t k = b.list_of[i];
       const LightList lights{b.light_items.data() + b.list_begin[k],
-                             b.list_begin[k + 1] - b.list_begin[k]};
+                             b.list_begin[k + 1] - b.list_begin[k],
+                             b.list_sees.data() + b.list_begin[k]};
       shade(sc, pr, b.points[i], lights, b, counts);
       spawn(sc, r.settings(), pr, b.points[i], b);
     } else {
@@ -412,40 +446,48 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
     std::fill(b.passed.begin(), b.passed.end(), 1.0f);
     return;
   }
-  const auto one = [&](std::size_t i) {
+  // Rays proven unoccluded pass whole (what their walk would return); the others are traced.
+  b.to_trace.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (b.shadows[i].unoccluded)
+      b.passed[i] = 1.0f;
+    else
+      b.to_trace.push_back(static_cast<std::uint32_t>(i));
+  }
+  const std::size_t m = b.to_trace.size();
+  const auto one = [&](std::uint32_t i) {
     b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
                                             b.shadows[i].distance, &walk);
   };
   if (!st.packets) {
-    for (std::size_t i = 0; i < n; ++i) one(i);
+    for (const std::uint32_t i : b.to_trace) one(i);
     return;
   }
-  // b.by_light: the rays grouped by light, stable; b.light_begin: the ends of the groups.
-  // A counting sort over the lights when there are fewer lights than rays, else a sort of
-  // the rays (whose cost does not grow with the scene's light count).
-  b.by_light.resize(n);
+  // b.by_light: the rays to trace grouped by light, stable; b.light_begin: the ends of the
+  // groups. A counting sort over the lights when there are fewer lights than rays, else a
+  // sort of the rays (whose cost does not grow with the scene's light count).
+  b.by_light.resize(m);
   b.light_begin.clear();
-  if (sc.lights.size() <= n) {
+  if (sc.lights.size() <= m) {
     b.light_begin.assign(sc.lights.size() + 1, 0);
-    for (const ShadowRay& sr : b.shadows) ++b.light_begin[sr.light + 1];
+    for (const std::uint32_t i : b.to_trace) ++b.light_begin[b.shadows[i].light + 1];
     for (std::size_t l = 1; l < b.light_begin.size(); ++l)
       b.light_begin[l] += b.light_begin[l - 1];
-    for (std::size_t i = 0; i < n; ++i)
-      b.by_light[b.light_begin[b.shadows[i].light]++] = static_cast<std::uint32_t>(i);
+    for (const std::uint32_t i : b.to_trace) b.by_light[b.light_begin[b.shadows[i].light]++] = i;
     // light_begin[l] is now the end of light l's run.
   } else {
     // Sorted by (light, ray): stable by construction. (A sort of a type of this namespace:
     // std::sort of plain integers would be instantiated here and in the portable code
     // alike, and the linker could keep this instruction set's copy for both.)
-    b.light_rays.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      b.light_rays[i] = {b.shadows[i].light, static_cast<std::uint32_t>(i)};
+    b.light_rays.resize(m);
+    for (std::size_t k = 0; k < m; ++k)
+      b.light_rays[k] = {b.shadows[b.to_trace[k]].light, b.to_trace[k]};
     std::sort(b.light_rays.begin(), b.light_rays.end(), [](const LightRay& x, const LightRay& y) {
       return x.light < y.light || (x.light == y.light && x.ray < y.ray);
     });
-    for (std::size_t k = 0; k < n; ++k) b.by_light[k] = b.light_rays[k].ray;
-    for (std::size_t k = 1; k <= n; ++k)
-      if (k == n || b.light_rays[k].light != b.light_rays[k - 1].light)
+    for (std::size_t k = 0; k < m; ++k) b.by_light[k] = b.light_rays[k].ray;
+    for (std::size_t k = 1; k <= m; ++k)
+      if (k == m || b.light_rays[k].light != b.light_rays[k - 1].light)
         b.light_begin.push_back(static_cast<std::uint32_t>(k));
   }
   std::size_t run = 0;

@@ -213,6 +213,9 @@ void Report::print_summary() const {
     if (l.lists > 0)
       std::printf("; %llu lists of %.1f lights", static_cast<unsigned long long>(l.lists),
                   double(l.list_entries) / double(l.lists));
+    if (l.unoccluded > 0)
+      std::printf("; %llu shadow rays proven unoccluded, not traced",
+                  static_cast<unsigned long long>(l.unoccluded));
     std::printf(")\n");
   }
   if (j.contains("stage_ms")) {
@@ -276,7 +279,8 @@ nlohmann::json Report::json() const {
                        {"considered", l.considered},
                        {"in_range", l.in_range},
                        {"lists", l.lists},
-                       {"list_entries", l.list_entries}};
+                       {"list_entries", l.list_entries},
+                       {"unoccluded", l.unoccluded}};
   const auto stage = [&](std::uint64_t rt2::StageTimes::*field) {
     return median_of(stages_, [&](const rt2::StageTimes& s) { return double(s.*field) * 1e-6; });
   };
