@@ -155,16 +155,19 @@ void recenter_on_camera(Scene& scene) {
 // with the intensity of the scene's first light (1 if it has none). With a scene's light
 // field, the extra lights are the field's next ones instead.
 void set_light_count(Scene& scene, std::size_t total, std::optional<RangeInterval> range) {
+  if (scene.light_field && range) {  // the field's lights take the given ranges too
+    scene.light_field->range_lo = range->lo;
+    scene.light_field->range_hi = range->hi;
+    const LightField& field = *scene.light_field;
+    for (std::size_t i = field.first; i < scene.lights.size(); ++i)
+      scene.lights[i].range = field.light(i - field.first).range;
+  }
   if (total <= scene.lights.size()) {
     scene.lights.resize(total);
     return;
   }
   if (scene.light_field && scene.light_field->first <= scene.lights.size()) {
-    LightField field = *scene.light_field;
-    if (range) {
-      field.range_lo = range->lo;
-      field.range_hi = range->hi;
-    }
+    const LightField& field = *scene.light_field;
     for (std::size_t k = scene.lights.size() - field.first; scene.lights.size() < total; ++k)
       scene.lights.push_back(field.light(k));
     return;

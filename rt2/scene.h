@@ -80,8 +80,8 @@ struct RangeInterval {
 // Extra lights for `--lights N`: the scene's own lights first, then `total - existing`
 // lights: the next lights of the scene's light field if it has one, else lights placed
 // deterministically on a ring above the scene's bounds (see scene.cpp). `range`, when
-// given, is where the extra lights' ranges are drawn from (else the field's, or none for
-// the ring).
+// given, is where the ranges of the extra lights and of the field's own lights are drawn
+// from (else the field's, or none for the ring).
 void set_light_count(Scene& scene, std::size_t total, std::optional<RangeInterval> range = {});
 
 }  // namespace rt2

@@ -50,7 +50,9 @@ int run(const Options& o) {
 
   auto t0 = Clock::now();
   rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
-  if (o.lights >= 0) rt2::set_light_count(scene, static_cast<std::size_t>(o.lights), o.light_range);
+  if (o.lights >= 0 || o.light_range)
+    rt2::set_light_count(scene, o.lights >= 0 ? std::size_t(o.lights) : scene.lights.size(),
+                         o.light_range);
   scene.validate();
   rt2::recenter_on_camera(scene);  // full float precision where the pixels come from
   const double load_ms = ms_since(t0);

@@ -121,7 +121,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
               isa = rt2::isa_name(o.isa), packets = "on", positional_scene,
-              light_culling = "bvh", light_lists = "bvh", shadows = "on";
+              light_culling = "clustered", light_lists = "bvh", shadows = "on";
   int light_slices = o.render.light_slices;
   std::string light_range;
   bool version = false;
@@ -140,7 +140,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--lights", lights, "total number of lights (scene's first, then extra ones)")
       ->default_str("the scene's own");
   app.add_option("--light-range", light_range, "range R (or LO,HI: uniform) of the extra "
-                                               "lights of --lights; light fades to 0 there")
+                                               "lights of --lights and of the scene's light "
+                                               "field; light fades to 0 there")
       ->default_str("the light field's, else none");
   app.add_option("--light-culling", light_culling,
                  "lights each point considers: none (all) | tiled | clustered (per block, per "

@@ -736,15 +736,20 @@ seed = 7
     ASSERT_FLOAT_EQ(l.color[1], 0.5f);
   }
   // More lights (rt2cpr --lights) continue the field and keep its first lights in place; a
-  // given range applies to the new ones only.
+  // given range applies to the field's lights, not to the [[lights]].
   Scene more = s;
-  set_light_count(more, 1500, RangeInterval{0.25f, 0.25f});
+  set_light_count(more, 1500);
   ASSERT_EQ(more.lights.size(), 1500u);
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     ASSERT_EQ(float(dot(more.lights[i].position - s.lights[i].position,
                         more.lights[i].position - s.lights[i].position)), 0.0f);
-  EXPECT_FLOAT_EQ(more.lights[1200].range, 0.25f);
   EXPECT_FLOAT_EQ(more.lights[1001].range, s.lights[1001].range);
+  set_light_count(more, 1600, RangeInterval{0.25f, 0.25f});
+  EXPECT_FLOAT_EQ(more.lights[1550].range, 0.25f);
+  EXPECT_FLOAT_EQ(more.lights[1001].range, 0.25f);
+  EXPECT_FLOAT_EQ(more.lights[0].range, 2.5f);
+  EXPECT_EQ(float(dot(more.lights[1001].position - s.lights[1001].position,
+                      more.lights[1001].position - s.lights[1001].position)), 0.0f);
   // Fewer lights keep the first ones.
   set_light_count(more, 3);
   EXPECT_EQ(more.lights.size(), 3u);
