@@ -1,10 +1,6 @@
 // rt2/compiled_scene.cpp — compiling a Scene (see compiled_scene.h).
 #include "rt2/compiled_scene.h"
 
-#include <chrono>
-
-#include <omp.h>
-
 namespace rt2 {
 
 CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config, Isa isa) {
@@ -19,23 +15,17 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
   c.offset_scale = scene.size();
   c.features = scene.features();
   c.light_paths.reserve(c.lights.size());
-  for (std::size_t i = 0; i < c.lights.size(); ++i)
+  for (std::size_t i = 0; i < c.lights.size(); ++i) {
     c.light_paths.emplace_back(c.lights[i], i, c.offset_scale);
+    if (c.lights[i].has_range()) c.light_path_bounds.grow(c.light_paths.back().bounds());
+  }
   c.light_bvh.build(c.lights, 0);
   return c;
 }
 
 LightBvh::BuildTimes CompiledScene::move_lights(double seconds, int threads) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t n = lights.size();
-  const LightPath::Turn turn = LightPath::turn(seconds);
-#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) lights[i].position = light_paths[i].at(turn);
-  const double move_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  LightBvh::BuildTimes times = light_bvh.build(lights, threads);
-  times.move_ms = move_ms;
-  return times;
+  return light_bvh.move_and_build(lights, light_paths, LightPath::turn(seconds),
+                                  light_path_bounds, threads);
 }
 
 }  // namespace rt2

@@ -27,6 +27,7 @@ struct CompiledScene {
   std::vector<Light> lights;             // where they are this frame
   LightBvh light_bvh;                    // over `lights`' spheres of influence
   std::vector<LightPath> light_paths;    // where move_lights takes each light
+  Aabb light_path_bounds;                // a box holding the paths of the lights with a range
   vec4 ambient;     // I_amb
   vec4 background;  // colour of rays that hit nothing
   vec4 origin;      // where these coordinates' origin is in the world (Scene::origin)

@@ -47,14 +47,44 @@ inline bool sphere_meets_box(const vec4& s, const Aabb& b) {
 }  // namespace
 
 LightBvh::BuildTimes LightBvh::build(const std::vector<Light>& lights, int threads) {
+  return build_with(lights, [&](std::size_t i) { return lights[i].position; }, nullptr, threads);
+}
+
+LightBvh::BuildTimes LightBvh::move_and_build(std::vector<Light>& lights,
+                                              const std::vector<LightPath>& paths,
+                                              const LightPath::Turn& turn,
+                                              const Aabb& path_bounds, int threads) {
+  return build_with(
+      lights,
+      [&](std::size_t i) {
+        const vec4 p = paths[i].at(turn);
+        lights[i].position = p;
+        return p;
+      },
+      &path_bounds, threads);
+}
+
+// position(i): light i's position (and, when the lights move, where it is moved).
+// position(i): light i's position (and, when the lights move, where it is moved). `known`:
+// a box that holds every bounded light, or null. With it, the first pass also writes the
+// Morton codes and the second is skipped when every light has a range.
+template <typename Position>
+LightBvh::BuildTimes LightBvh::build_with(const std::vector<Light>& lights, Position position,
+                                          const Aabb* known, int threads) {
   if (threads <= 0) threads = omp_get_max_threads();
   BuildTimes times;
   Clock::time_point t0 = Clock::now();
   const std::size_t n = lights.size();
   padded_.resize(n);
   unbounded_.clear();
+  if (known) {
+    order_.resize(n);
+    codes_.resize(n);
+  }
+  const MortonGrid known_grid(known ? *known : Aabb());
   // Pass 1, one chunk of [0, n) per thread: the padded spheres, the bounds of the bounded
-  // lights' centres and how many each chunk has.
+  // lights' centres and how many each chunk has (and with known bounds, every light's code
+  // as if all had a range).
   const std::size_t chunks = static_cast<std::size_t>(threads);
   const auto chunk_begin = [&](std::size_t c) { return n * c / chunks; };
   std::vector<Aabb> chunk_bounds(chunks);
@@ -64,12 +94,16 @@ LightBvh::BuildTimes LightBvh::build(const std::vector<Light>& lights, int threa
     Aabb box;  // locals: the chunks' entries share cache lines
     std::size_t count = 0;
     for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-      const Light& l = lights[i];
-      const bool has_range = l.has_range();
-      padded_[i] = vec4(l.position[0], l.position[1], l.position[2],
-                        has_range ? l.range * kRangePad : kInfinity);
-      if (has_range) box.grow(l.position);
+      const vec4 p = position(i);
+      const float range = lights[i].range;
+      const bool has_range = range < kInfinity;
+      padded_[i] = vec4(p[0], p[1], p[2], has_range ? range * kRangePad : kInfinity);
+      if (has_range) box.grow(p);
       count += has_range;
+      if (known) {
+        order_[i] = static_cast<std::uint32_t>(i);
+        codes_[i] = known_grid.code(p);
+      }
     }
     chunk_bounds[c] = box;
     bounded[c + 1] = count;
@@ -79,20 +113,22 @@ LightBvh::BuildTimes LightBvh::build(const std::vector<Light>& lights, int threa
     bounds.grow(chunk_bounds[c]);
     bounded[c + 1] += bounded[c];
   }
-  times.bounds_ms = ms_since(t0);
+  times.lights_ms = ms_since(t0);
 
   // Pass 2: each chunk writes its bounded lights' indices and Morton codes from its offset.
   const std::size_t m = bounded.back();
-  const MortonGrid grid(bounds);
-  order_.resize(m);
-  codes_.resize(m);
+  if (!known || m < n) {
+    const MortonGrid grid(bounds);
+    order_.resize(m);
+    codes_.resize(m);
 #pragma omp parallel for num_threads(threads) schedule(static, 1)
-  for (std::size_t c = 0; c < chunks; ++c) {
-    std::size_t k = bounded[c];
-    for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-      if (!(padded_[i][3] < kInfinity)) continue;
-      order_[k] = static_cast<std::uint32_t>(i);
-      codes_[k++] = grid.code(padded_[i]);
+    for (std::size_t c = 0; c < chunks; ++c) {
+      std::size_t k = bounded[c];
+      for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
+        if (!(padded_[i][3] < kInfinity)) continue;
+        order_[k] = static_cast<std::uint32_t>(i);
+        codes_[k++] = grid.code(padded_[i]);
+      }
     }
   }
   if (m < n)
@@ -111,15 +147,17 @@ LightBvh::BuildTimes LightBvh::build(const std::vector<Light>& lights, int threa
     if (k + 16 < m) __builtin_prefetch(&padded_[order_[k + 16]]);
     sorted_[k] = padded_[order_[k]];
   }
-  // Level 0: the lights' boxes in Morton order; each level above boxes four of the one
-  // below, until one block holds the root's children.
+  // Level 0: the boxes of groups of four lights in Morton order (a walk tests a group's
+  // spheres themselves); each level above boxes four of the one below, until one block
+  // holds the root's children.
+  const std::size_t groups = (m + 3) / 4;
   std::size_t levels = 0;
-  for (std::size_t count = m; count > 0; count = (count + 3) / 4) {
+  for (std::size_t count = groups; count > 0; count = (count + 3) / 4) {
     ++levels;
     if (count <= 4) break;
   }
   levels_.resize(levels);
-  std::size_t count = m;
+  std::size_t count = groups;
   for (std::size_t k = 0; k < levels; ++k) {
     std::vector<Block>& level = levels_[k];
     const std::size_t blocks = (count + 3) / 4;
@@ -135,14 +173,15 @@ LightBvh::BuildTimes LightBvh::build(const std::vector<Light>& lights, int threa
         }
         if (e >= count) continue;
         if (k == 0) {
-          // The sphere, in Morton order, and its box widened by 4 ulps of |c| + r: more
-          // than the rounding of c - r and c + r (half an ulp of |c| + r each) and of the
-          // widening itself.
-          const vec4& s = sorted_[e];
-          for (int a = 0; a < 3; ++a) {
-            const float ulps = (std::fabs(s[a]) + s[3]) * 0x1p-22f;
-            out.lo[a][j] = s[a] - s[3] - ulps;
-            out.hi[a][j] = s[a] + s[3] + ulps;
+          // The group's spheres' boxes, each widened by 4 ulps of |c| + r: more than the
+          // rounding of c - r and c + r (half an ulp of |c| + r each) and of the widening.
+          for (std::size_t l = 4 * e; l < std::min(4 * e + 4, m); ++l) {
+            const vec4& s = sorted_[l];
+            for (int a = 0; a < 3; ++a) {
+              const float ulps = (std::fabs(s[a]) + s[3]) * 0x1p-22f;
+              out.lo[a][j] = std::min(out.lo[a][j], s[a] - s[3] - ulps);
+              out.hi[a][j] = std::max(out.hi[a][j], s[a] + s[3] + ulps);
+            }
           }
         } else {
           const Block& in = levels_[k - 1][e];
@@ -181,8 +220,10 @@ void LightBvh::walk(Overlaps overlaps, Accept accept, std::vector<std::uint32_t>
         const std::uint32_t child = 4 * e.block + static_cast<std::uint32_t>(std::countr_zero(mask));
         if (e.level > 0) {
           stack[top++] = {e.level - 1, child};
-        } else {
-          if (accept(sorted_[child])) out.push_back(order_[child]);
+        } else {  // a group of lights
+          const std::size_t end = std::min<std::size_t>(4 * child + 4, sorted_.size());
+          for (std::size_t l = 4 * child; l < end; ++l)
+            if (accept(sorted_[l])) out.push_back(order_[l]);
         }
       }
     }

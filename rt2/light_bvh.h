@@ -5,11 +5,12 @@
 // 3.3) builds its light BVH on the GPU each frame: the bounds of the lights, a Morton code
 // per light from its position in those bounds, a radix sort of the codes, then the tree
 // "from linear runs of the sorted sequence": leaves first, then their parents, level by
-// level. rt2 does the same on the CPU, in parallel (OpenMP): level 0 holds the lights in
-// Morton order, and each entry of level k + 1 is the box of four consecutive entries of
-// level k, stored as a block of four boxes in structure-of-arrays form so that one node is
-// tested against a point or a box in one SIMD pass. The top level has at most four
-// entries. A light's box is its sphere of influence (centre = position, radius = range).
+// level. rt2 does the same on the CPU, in parallel (OpenMP): the lights in Morton order
+// are taken four at a time (the leaves), level 0 holds each group's box, and each entry of
+// level k + 1 is the box of four consecutive entries of level k, stored as a block of four
+// boxes in structure-of-arrays form so that one node is tested against a point or a box in
+// one SIMD pass; a walk that reaches a leaf tests its four spheres of influence (centre =
+// position, radius = range). The top level has at most four entries.
 //
 // Queries are conservative: every light whose sphere contains the point (meets the box) is
 // returned, and possibly a few more (the spheres are padded by 2^-16 of their radius, far
@@ -25,22 +26,29 @@
 
 #include "rt2/aabb.h"
 #include "rt2/light.h"
+#include "rt2/light_path.h"
 
 namespace rt2 {
 
 class LightBvh {
  public:
-  // Milliseconds per step of a frame's light update: moving the lights (CompiledScene::
-  // move_lights; 0 for a plain build), their bounds (with the padded spheres), the Morton
-  // codes (with the list of lights that have a range), the sort, the tree.
+  // Milliseconds per step of a frame's light update: one pass over the lights (moving
+  // them, when they move, their padded spheres and their bounds), the Morton codes (with
+  // the list of lights that have a range), the sort, the tree.
   struct BuildTimes {
-    double move_ms = 0.0, bounds_ms = 0.0, morton_ms = 0.0, sort_ms = 0.0, tree_ms = 0.0;
-    double total_ms() const { return move_ms + bounds_ms + morton_ms + sort_ms + tree_ms; }
+    double lights_ms = 0.0, morton_ms = 0.0, sort_ms = 0.0, tree_ms = 0.0;
+    double total_ms() const { return lights_ms + morton_ms + sort_ms + tree_ms; }
   };
 
   // Builds over `lights` (positions finite, ranges > 0) with `threads` OpenMP threads
   // (<= 0: all). Rebuilding reuses the storage of the last build.
   BuildTimes build(const std::vector<Light>& lights, int threads);
+  // Moves light i to paths[i].at(turn) and builds, the move inside the build's first pass
+  // over the lights; `path_bounds` (a box holding every path: LightPath::bounds) lets that
+  // pass take the Morton codes too. A frame of moving lights makes two passes over memory
+  // fewer than moving them and calling build().
+  BuildTimes move_and_build(std::vector<Light>& lights, const std::vector<LightPath>& paths,
+                            const LightPath::Turn& turn, const Aabb& path_bounds, int threads);
 
   // `out` = the lights that may reach point p (see above), in increasing index.
   void lights_near(const vec4& p, std::vector<std::uint32_t>& out) const;
@@ -66,6 +74,9 @@ class LightBvh {
     float lo[3][4];
     float hi[3][4];
   };
+  template <typename Position>
+  BuildTimes build_with(const std::vector<Light>& lights, Position position, const Aabb* known,
+                        int threads);
   template <typename Overlaps, typename Accept>
   void walk(Overlaps overlaps, Accept accept, std::vector<std::uint32_t>& out) const;
   void finish(std::vector<std::uint32_t>& out) const;
@@ -74,7 +85,7 @@ class LightBvh {
   std::vector<std::uint32_t> unbounded_;   // lights without a range, increasing
   std::vector<std::uint32_t> order_;       // level-0 entry -> light index (Morton order)
   std::vector<vec4> sorted_;               // level-0 entry -> its padded sphere
-  std::vector<std::vector<Block>> levels_;  // levels_[0]: lights; back(): one block, the root
+  std::vector<std::vector<Block>> levels_;  // [0]: groups of 4 lights; back(): one block
   std::vector<std::uint32_t> codes_;       // build scratch (kept to avoid reallocation)
 };
 

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <numbers>
 
+#include "rt2/aabb.h"
 #include "rt2/light.h"
 
 namespace rt2 {
@@ -42,6 +43,16 @@ struct LightPath {
   vec4 at(const Turn& t) const {
     return anchor + radius * vec4(cos_phase * t.cos_minus_1 - sin_phase * t.sin, 0.0f,
                                   sin_phase * t.cos_minus_1 + cos_phase * t.sin);
+  }
+
+  // A box holding the whole circle.
+  Aabb bounds() const {
+    const vec4 r(radius, 0.0f, radius);
+    const vec4 c = anchor + radius * vec4(-cos_phase, 0.0f, -sin_phase);  // the centre
+    Aabb b;
+    b.grow(c - r);
+    b.grow(c + r);
+    return b;
   }
 
   vec4 anchor;

@@ -227,9 +227,9 @@ void Report::print_summary() const {
   }
   if (j.contains("light_update_ms")) {
     const auto& u = j["light_update_ms"];
-    std::printf("light update per frame: %.2f ms (move %.2f, bounds %.2f, Morton %.2f, sort "
+    std::printf("light update per frame: %.2f ms (move and bounds %.2f, Morton %.2f, sort "
                 "%.2f, tree %.2f)\n",
-                u["total"].get<double>(), u["move"].get<double>(), u["bounds"].get<double>(),
+                u["total"].get<double>(), u["lights"].get<double>(),
                 u["morton"].get<double>(), u["sort"].get<double>(), u["tree"].get<double>());
   }
   if (passes_ < j["passes"].get<int>())
@@ -296,7 +296,7 @@ nlohmann::json Report::json() const {
       return median_of(light_updates_, [&](const B& b) { return b.*field; });
     };
     j["light_update_ms"] = {
-        {"move", step(&B::move_ms)},     {"bounds", step(&B::bounds_ms)},
+        {"lights", step(&B::lights_ms)},
         {"morton", step(&B::morton_ms)}, {"sort", step(&B::sort_ms)},
         {"tree", step(&B::tree_ms)},
         {"total", median_of(light_updates_, [](const B& b) { return b.total_ms(); })}};
