@@ -125,7 +125,7 @@ LightBvh::BuildTimes LightBvh::build_with(const std::vector<Light>& lights, Posi
     for (std::size_t c = 0; c < chunks; ++c) {
       std::size_t k = bounded[c];
       for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-        if (!(padded_[i][3] < kInfinity)) continue;
+        if (!lights[i].has_range()) continue;  // (a huge range pads to +inf: still in the tree)
         order_[k] = static_cast<std::uint32_t>(i);
         codes_[k++] = grid.code(padded_[i]);
       }
@@ -201,7 +201,7 @@ LightBvh::BuildTimes LightBvh::build_with(const std::vector<Light>& lights, Posi
 }
 
 // Depth-first over the blocks whose boxes `overlaps` (a mask of the block's four slots);
-// the lights of level 0 that `accept` are appended to `out`.
+// the lights of the groups reached that `accept` are appended to `out`.
 template <typename Overlaps, typename Accept>
 void LightBvh::walk(Overlaps overlaps, Accept accept, std::vector<std::uint32_t>& out) const {
   out.clear();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -187,6 +188,9 @@ TEST(LightBvh, ExtremesFarOriginsTinyAndHugeRangesCoincidentAndFlatLights) {
   check(lights, 1.0f, far, "far origin, tiny ranges");
   lights = random_lights(300, 10.0f, 1e10f, 1e30f, 31);
   check(lights, 1e12f, vec4(0.0f, 0.0f, 0.0f), "huge ranges");
+  lights = random_lights(50, 1.0f, 1.0f, 2.0f, 43);  // ranges whose padding overflows
+  lights[3].range = lights[7].range = std::numeric_limits<float>::max();
+  check(lights, 3.0f, vec4(0.0f, 0.0f, 0.0f), "largest finite range");
   lights = random_lights(100, 0.0f, 0.5f, 1.0f, 37);
   check(lights, 1.0f, vec4(0.0f, 0.0f, 0.0f), "coincident");
   lights = random_lights(400, 5.0f, 0.1f, 0.3f, 41);
