@@ -18,6 +18,9 @@ bool overlap(const Aabb& a, const Aabb& b) {
          a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
 }
 
+// `b` widened by 2^-12 of its largest coordinate magnitude. Both the hull and each
+// occluder are widened by their own: a ray test's rounding grows with the primitive's
+// coordinates (a triangle's edges, a sphere's c = |o - c|^2 - r^2) as well as the ray's.
 Aabb padded(const Aabb& b) {
   float m = 0.0f;
   for (int a = 0; a < 3; ++a) m = std::max({m, std::fabs(b.lo[a]), std::fabs(b.hi[a])});
@@ -26,6 +29,13 @@ Aabb padded(const Aabb& b) {
   out.lo = b.lo - pad;
   out.hi = b.hi + pad;
   return out;
+}
+
+// The largest |n·x| + |d| over the box (the magnitude a plane's side test rounds against).
+float plane_scale(const vec4& n, float d, const Aabb& b) {
+  float s = std::fabs(d);
+  for (int a = 0; a < 3; ++a) s += std::fabs(n[a]) * std::max(std::fabs(b.lo[a]), std::fabs(b.hi[a]));
+  return s;
 }
 
 // Appends the boxes of the triangles of the wide tree that meet `region`; false once more
@@ -52,19 +62,16 @@ bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
           const std::uint32_t prim = b->prim_of(l);
           if (prim == TriangleBlock::kNoPrim) continue;
           const Triangle& t = acc.tris[prim];
-          Aabb box;
-          box.grow(t.v0);
-          box.grow(t.v1);
-          box.grow(t.v2);
+          Aabb tight;
+          tight.grow(t.v0);
+          tight.grow(t.v1);
+          tight.grow(t.v2);
+          const Aabb box = padded(tight);
           if (!overlap(box, region)) continue;
           if (out.size() == limit) return false;
           const vec4 n = t.n;
           const float d = -(n[0] * t.v0[0] + n[1] * t.v0[1] + n[2] * t.v0[2]);
-          float scale = std::fabs(d);
-          for (const vec4* v : {&box.lo, &box.hi})
-            scale = std::max(scale, std::fabs(n[0] * (*v)[0]) + std::fabs(n[1] * (*v)[1]) +
-                                        std::fabs(n[2] * (*v)[2]));
-          out.push_back({box, vec4(n[0], n[1], n[2], d), scale});
+          out.push_back({box, vec4(n[0], n[1], n[2], d), plane_scale(n, d, tight)});
         }
         if (b->last()) break;
       }
@@ -89,9 +96,10 @@ bool sphere_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
                   std::vector<ClusterVisibility::Occluder>& out) {
   for (const Sphere& s : acc.spheres) {
     const vec4 r(s.radius, s.radius, s.radius);
-    Aabb box;
-    box.lo = s.center - r;
-    box.hi = s.center + r;
+    Aabb tight;
+    tight.lo = s.center - r;
+    tight.hi = s.center + r;
+    const Aabb box = padded(tight);
     if (!overlap(box, region)) continue;
     if (out.size() == limit) return false;
     out.push_back({box, vec4(0.0f, 0.0f, 0.0f, 0.0f), -1.0f});
@@ -171,26 +179,31 @@ bool ClusterVisibility::sees(const vec4& light) const {
     bool met = false;
     for (const Aabb& slice : slices) met = met || overlap(o.box, slice);
     if (!met) continue;
-    if (o.margin >= 0.0f && separated_by(o.plane, kTrianglePlanePad * o.margin, light)) continue;
+    if (o.margin >= 0.0f && separated_by(o.plane, o.margin, light)) continue;
     return false;
   }
   return true;
 }
 
-// Whether the hull's corners (the cluster's 8 and the light) are all more than `margin`
-// on one side of the plane p (n·x + d).
-bool ClusterVisibility::separated_by(const vec4& p, float margin, const vec4& light) const {
-  float lo = kInfinity, hi = -kInfinity;
+// Whether the hull's corners (the cluster's 8 and the light) all lie on one side of the
+// plane p (n·x + d), each beyond 2^-19 of the larger of the magnitudes its side test and
+// the triangle's own (`scale`) round against.
+bool ClusterVisibility::separated_by(const vec4& p, float scale, const vec4& light) const {
+  int above = 0, below = 0;
   for (int corner = 0; corner < 9; ++corner) {
     const vec4 x = corner == 8 ? light
                                : vec4((corner & 1) ? cluster_.hi[0] : cluster_.lo[0],
                                       (corner & 2) ? cluster_.hi[1] : cluster_.lo[1],
                                       (corner & 4) ? cluster_.hi[2] : cluster_.lo[2]);
     const float s = p[0] * x[0] + p[1] * x[1] + p[2] * x[2] + p[3];
-    lo = std::min(lo, s);
-    hi = std::max(hi, s);
+    const float m = kTrianglePlanePad * std::max(scale, std::fabs(p[0] * x[0]) +
+                                                            std::fabs(p[1] * x[1]) +
+                                                            std::fabs(p[2] * x[2]) +
+                                                            std::fabs(p[3]));
+    above += s > m;
+    below += s < -m;
   }
-  return lo > margin || hi < -margin;
+  return above == 9 || below == 9;
 }
 
 }  // namespace rt2

@@ -5,7 +5,8 @@
 // is fully lit: its pixels skip the per-pixel shadow test for that light. The ray-traced
 // equivalent is exact: a shadow ray from a point of box B to a light at L stays inside the
 // convex hull of B and L, so inside the box H = B ∪ {L}. When no triangle or sphere has a
-// bounding box that meets H (padded well beyond the rounding of any ray test), and no plane
+// bounding box that meets H (each padded by 2^-12 of its own coordinates: well beyond the
+// rounding of any ray test, which grows with the ray's and the primitive's), and no plane
 // separates B from L (all of B's corners and L strictly on one side, with a margin), every
 // such ray passes unattenuated: the transmittance its walk would return is exactly 1, and
 // the ray is not traced. Otherwise nothing is claimed and the rays are traced as usual.
@@ -33,7 +34,7 @@ class ClusterVisibility {
   struct Occluder {
     Aabb box;
     vec4 plane;    // a triangle's n.xyz, d (n·x + d = 0 on it); zero for a sphere
-    float margin;  // |n|·|x| + |d| over its box, to scale the side test's margin; < 0: none
+    float margin;  // the largest |n·x| + |d| over the triangle (its side test's scale); < 0: none
   };
 
   // For shadow rays from points of `cluster` to lights inside `reach` (a box holding
@@ -44,7 +45,7 @@ class ClusterVisibility {
   bool sees(const vec4& light) const;
 
  private:
-  bool separated_by(const vec4& plane, float margin, const vec4& light) const;
+  bool separated_by(const vec4& plane, float scale, const vec4& light) const;
 
   Aabb cluster_;
   bool complete_ = false;             // every occluder near the cluster is in occluders_

@@ -305,10 +305,14 @@ inline int depth_slice(float z, float near, float far, int slices) {
   return x >= float(slices - 1) ? slices - 1 : (x > 0.0f ? int(x) : 0);
 }
 
-// Whether hits get light lists: culling is on and some light has a range (without one,
-// every light reaches everywhere).
+// Whether hits get light lists: culling is on, some light has a range (without one, every
+// light reaches everywhere), and at most kMaxListedUnbounded lights have none (every list
+// repeats those: beyond, a list per point would cost more than testing every light).
+inline constexpr std::size_t kMaxListedUnbounded = 1024;
 inline bool uses_light_lists(const Renderer& r) {
-  return r.settings().light_culling != LightCulling::none && r.scene().light_bvh.has_bounded();
+  const LightBvh& lights = r.scene().light_bvh;
+  return r.settings().light_culling != LightCulling::none && lights.has_bounded() &&
+         lights.unbounded().size() <= kMaxListedUnbounded;
 }
 
 // Stage 3, second step: the lights each hit considers (RenderSettings::light_culling), as

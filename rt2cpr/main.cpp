@@ -50,6 +50,10 @@ int run(const Options& o) {
 
   auto t0 = Clock::now();
   rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
+  if (o.light_range && !scene.light_field &&
+      (o.lights < 0 || std::size_t(o.lights) <= scene.lights.size()))
+    throw rt2::Error("--light-range applies to the lights --lights adds and to a scene's "
+                     "[light_field]; this scene has no light field and no lights are added");
   if (o.lights >= 0 || o.light_range)
     rt2::set_light_count(scene, o.lights >= 0 ? std::size_t(o.lights) : scene.lights.size(),
                          o.light_range);

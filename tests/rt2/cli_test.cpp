@@ -198,6 +198,7 @@ TEST_F(Cli, LightCullingModesWriteTheSameImageAndStatsCountLightsAndUpdates) {
   expect_clean_failure(run("--light-range 1,x"), "light-range");
   expect_clean_failure(run("--light-range nan"), "light-range");
   expect_clean_failure(run("--shadows maybe"), "maybe");
+  expect_clean_failure(run(std::string(kTiny) + " --light-range 5"), "no lights are added");
 }
 
 TEST_F(Cli, AnObjAloneIsFramedAndRendered) {
