@@ -38,14 +38,15 @@ float plane_scale(const vec4& n, float d, const Aabb& b) {
   return s;
 }
 
-// Appends the boxes of the triangles of the wide tree that meet `region`; false once more
-// than `limit` are found.
 // The hull of the cluster and a light is split into this many slices along the rays.
 constexpr int kSlices = 4;
 // A triangle's plane is evaluated to a few 2^-24 of |n|·|x| + |d|: 2^-19 is the margin
 // (small beside the 2^-15 relative offset that lifts shadow-ray origins off a surface).
 constexpr float kTrianglePlanePad = 0x1p-19f;
 
+// Appends the triangles of the wide tree whose padded boxes meet `region`; false once more
+// than `limit` are found. Node boxes are padded by their own magnitude, which is at least
+// that of any triangle below them, so no triangle whose padded box meets `region` is missed.
 template <int N>
 bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
                     std::vector<ClusterVisibility::Occluder>& out) {
@@ -83,7 +84,7 @@ bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
       Aabb box;
       box.lo = vec4(node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]);
       box.hi = vec4(node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]);
-      if (!overlap(box, region)) continue;
+      if (!overlap(padded(box), region)) continue;
       if (top == 256) return false;  // deeper than any tree rt2 builds: prove nothing
       stack[top++] = node.child[c];
     }
