@@ -92,18 +92,37 @@ bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
   return true;
 }
 
-// Appends the boxes of the spheres that meet `region`; false once more than `limit` are.
+// Appends the spheres whose padded boxes meet `region`, walking the spheres' binary tree
+// (nodes padded as in triangle_boxes); false once more than `limit` are found.
 bool sphere_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
                   std::vector<ClusterVisibility::Occluder>& out) {
-  for (const Sphere& s : acc.spheres) {
-    const vec4 r(s.radius, s.radius, s.radius);
-    Aabb tight;
-    tight.lo = s.center - r;
-    tight.hi = s.center + r;
-    const Aabb box = padded(tight);
-    if (!overlap(box, region)) continue;
-    if (out.size() == limit) return false;
-    out.push_back({box, vec4(0.0f, 0.0f, 0.0f, 0.0f), -1.0f});
+  if (acc.spheres.empty()) return true;
+  const std::vector<BvhNode>& nodes = acc.sphere_bvh.nodes;
+  std::uint32_t stack[kMaxBvhDepth + 1];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const BvhNode& n = nodes[stack[--top]];
+    Aabb node;
+    node.lo = vec4(n.lo[0], n.lo[1], n.lo[2]);
+    node.hi = vec4(n.hi[0], n.hi[1], n.hi[2]);
+    if (!overlap(padded(node), region)) continue;
+    if (!n.is_leaf()) {
+      stack[top++] = static_cast<std::uint32_t>(&n - nodes.data()) + 1;  // first child
+      stack[top++] = n.offset;                                           // second child
+      continue;
+    }
+    for (std::uint32_t i = n.offset; i < n.offset + n.count; ++i) {
+      const Sphere& s = acc.spheres[i];
+      const vec4 r(s.radius, s.radius, s.radius);
+      Aabb tight;
+      tight.lo = s.center - r;
+      tight.hi = s.center + r;
+      const Aabb box = padded(tight);
+      if (!overlap(box, region)) continue;
+      if (out.size() == limit) return false;
+      out.push_back({box, vec4(0.0f, 0.0f, 0.0f, 0.0f), -1.0f});
+    }
   }
   return true;
 }
