@@ -1,4 +1,5 @@
-// rt2/material.h — Phong materials (thesis 3.2).
+// rt2/material.h — materials: Phong (thesis 3.2) and physically based metallic-roughness
+// (glTF 2.0's model; rt2/brdf.h).
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,15 @@
 #include "rt2/ray.h"
 
 namespace rt2 {
+
+// Which shading a material gets.
+enum class Shading : std::uint8_t {
+  phong,  // the thesis's model (the fields Ka ... checker below)
+  pbr,    // Cook-Torrance GGX metallic-roughness (the fields base_color ... below; brdf.h)
+};
+
+// An index into Scene::textures (CompiledScene::textures), or kNoTexture.
+inline constexpr std::uint32_t kNoTexture = ~std::uint32_t(0);
 
 // I_local = Ka I_amb + sum over visible lights [Kd I (L·N) + Ks I (R·V)^n];
 // I = I_local + Kr I_reflected + Kt I_refracted. Colours are linear RGB in lanes x y z.
@@ -22,6 +32,28 @@ struct Material {
   // replaced by `diffuse2`. Off when checker_scale is 0.
   vec4 diffuse2{0.1f, 0.1f, 0.1f};
   float checker_scale = 0.0f;
+
+  Shading model = Shading::phong;
+
+  // Physically based (model == pbr), glTF 2.0's metallic-roughness material. Colours are
+  // linear RGB. The shading (rt2/brdf.h, the render kernel) takes F0 = 0.04 (1 - metallic)
+  // + base_color metallic and the diffuse colour base_color (1 - metallic).
+  vec4 base_color{1.0f, 1.0f, 1.0f};
+  float metallic = 0.0f;       // [0, 1]
+  float roughness = 1.0f;      // perceptual, [0, 1]; the GGX alpha is roughness^2
+  vec4 emissive{0.0f, 0.0f, 0.0f};  // radiance the surface emits (>= 0)
+  float transmission = 0.0f;   // [0, 1]: the share of the non-reflected light refracted
+                               // (KHR_materials_transmission); uses `ior`
+  float normal_scale = 1.0f;   // glTF normalTexture.scale
+
+  // Textures (either model): base_color_texture multiplies base_color (pbr) or Kd (phong,
+  // MTL's map_Kd), sRGB-encoded; metallic_roughness_texture is linear, roughness in G and
+  // metallic in B, multiplying the factors; normal_texture a tangent-space normal map;
+  // emissive_texture multiplies emissive, sRGB-encoded.
+  std::uint32_t base_color_texture = kNoTexture;
+  std::uint32_t metallic_roughness_texture = kNoTexture;
+  std::uint32_t normal_texture = kNoTexture;
+  std::uint32_t emissive_texture = kNoTexture;
 
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.

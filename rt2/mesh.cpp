@@ -18,6 +18,14 @@ void Mesh::append(const Mesh& other) {
   // Per-vertex normals survive only if both parts have them; otherwise the result is flat.
   const bool smooth = (positions.empty() || !normals.empty()) &&
                       (other.positions.empty() || !other.normals.empty());
+  // Texture coordinates survive if either part has them; the other part's vertices get (0, 0).
+  if (!texcoords.empty() || !other.texcoords.empty()) {
+    texcoords.resize(positions.size());
+    if (other.texcoords.empty())
+      texcoords.resize(positions.size() + other.positions.size());
+    else
+      texcoords.insert(texcoords.end(), other.texcoords.begin(), other.texcoords.end());
+  }
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
   if (smooth)
     normals.insert(normals.end(), other.normals.begin(), other.normals.end());

@@ -1,7 +1,7 @@
 // rt2/mesh.h — an indexed triangle mesh as loaded or generated, before acceleration.
 //
 // Positions (w = 0), optional per-vertex normals (same count as positions, or empty for
-// flat shading), faces as vertex-index triples, and a material index per face (an index
+// flat shading) and texture coordinates (same count, or empty), faces as vertex-index triples, and a material index per face (an index
 // into Scene::materials). Accel turns meshes into precomputed Triangles in BVH order.
 #pragma once
 
@@ -18,6 +18,9 @@ struct Mesh {
   std::string name;  // file name or generator name, for messages
   std::vector<vec4> positions;
   std::vector<vec4> normals;  // empty, or one unit normal per position
+  // Texture coordinates: empty, or one (u, v) per position. Image row 0 is v = 1 (OBJ's
+  // convention; glTF's v, whose row 0 is v = 0, is flipped by its loader).
+  std::vector<std::array<float, 2>> texcoords;
   std::vector<std::array<std::uint32_t, 3>> faces;
   std::vector<std::uint32_t> face_materials;  // one per face
 

@@ -99,6 +99,22 @@ void Scene::validate() const {
     check(std::isfinite(m.ior) && m.ior > 0.0f, at + "ior must be > 0");
     check(std::isfinite(m.checker_scale) && m.checker_scale >= 0.0f,
           at + "checker_scale must be >= 0");
+    check(finite(m.base_color) && finite(m.emissive), at + "base_color and emissive must be finite");
+    check(m.metallic >= 0.0f && m.metallic <= 1.0f, at + "metallic must be in [0, 1]");
+    check(m.roughness >= 0.0f && m.roughness <= 1.0f, at + "roughness must be in [0, 1]");
+    check(m.transmission >= 0.0f && m.transmission <= 1.0f, at + "transmission must be in [0, 1]");
+    check(std::isfinite(m.normal_scale), at + "normal_scale must be finite");
+    for (const std::uint32_t t : {m.base_color_texture, m.metallic_roughness_texture,
+                                  m.normal_texture, m.emissive_texture})
+      check(t == kNoTexture || t < textures.size(), at + "texture index out of range");
+  }
+  if (environment) {
+    check(std::isfinite(environment->intensity) && environment->intensity >= 0.0f,
+          "environment: intensity must be finite and >= 0");
+    check(std::isfinite(environment->rotation_degrees), "environment: rotation must be finite");
+    check(finite(environment->sun_direction) &&
+              float(dot(environment->sun_direction, environment->sun_direction)) > 0.0f,
+          "environment: sun direction must be finite and non-zero");
   }
   for (std::size_t i = 0; i < lights.size(); ++i) {
     check(finite(lights[i].position) && finite(lights[i].color) &&
@@ -123,6 +139,11 @@ void Scene::validate() const {
     check(m.face_materials.size() == m.faces.size(), "mesh '" + m.name + "': one material per face");
     check(m.normals.empty() || m.normals.size() == m.positions.size(),
           "mesh '" + m.name + "': normals must match positions");
+    check(m.texcoords.empty() || m.texcoords.size() == m.positions.size(),
+          "mesh '" + m.name + "': texture coordinates must match positions");
+    for (const auto& uv : m.texcoords)
+      check(std::isfinite(uv[0]) && std::isfinite(uv[1]),
+            "mesh '" + m.name + "': non-finite texture coordinate");
     for (const vec4& p : m.positions) check(finite(p), "mesh '" + m.name + "': non-finite vertex");
     for (const vec4& n : m.normals)
       check(finite(n) && std::fabs(float(dot(n, n)) - 1.0f) < 1e-3f,

@@ -20,6 +20,24 @@
 
 namespace rt2 {
 
+// An image a material samples (rt2/texture.h): a file, or an image held in the scene file
+// itself (glTF's embedded images), whose bytes are `data`.
+struct TextureDesc {
+  std::string path;  // the file; for an embedded image, a name for messages ("x.glb:image 2")
+  std::string data;  // an embedded image's file bytes (PNG, JPEG, ...); empty for a file
+  bool srgb = true;  // whether its values are sRGB-encoded colours (else linear data)
+};
+
+// The light arriving from far away in every direction (rt2/environment.h): the background
+// of rays that miss, and the image-based light of physically based materials.
+struct EnvironmentDesc {
+  // An equirectangular HDR image (.hdr, .exr, ...); empty: a procedural sky.
+  std::string image;
+  float intensity = 1.0f;         // scales the image or sky (>= 0)
+  float rotation_degrees = 0.0f;  // turns it about the up (y) axis
+  vec4 sun_direction{0.3f, 0.8f, 0.5f};  // the sky's sun (normalized on use)
+};
+
 struct Scene {
   Camera camera;
   vec4 ambient{0.2f, 0.2f, 0.2f};      // I_amb, the ambient light
@@ -31,6 +49,10 @@ struct Scene {
 
   std::vector<Material> materials;
   std::vector<std::string> material_names;  // parallel to materials
+  std::vector<TextureDesc> textures;        // what Material::*_texture index
+  // The environment; none: rays that miss take `background`, and physically based
+  // materials take `ambient` as light from every direction.
+  std::optional<EnvironmentDesc> environment;
   std::vector<Light> lights;
   // Where extra lights go (set_light_count): the scene's light field, if it has one. Its
   // lights are lights[field.first ...].
