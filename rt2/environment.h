@@ -1,0 +1,99 @@
+// rt2/environment.h — the light from far away: an environment map seen as the background
+// and prefiltered for image-based lighting with the split-sum approximation (Karis 2013,
+// "Real Shading in Unreal Engine 4"; learnopengl's IBL chapters).
+//
+// A surface lit by the environment reflects
+//   diffuse:  kD base_color irradiance(n)
+//   specular: specular(r, roughness) (F0 A + B),  brdf_scale_bias(n·v, roughness) -> A, B
+// with r the mirror direction of v. The factories prefilter once per scene (in parallel
+// with OpenMP); the lookups are bilinear and cheap, made per shaded point.
+//
+// Maps are equirectangular with the convention of rt2/equirect.h (y up, row 0 at +y).
+// rotation_degrees turns the environment about +y, right-handed (90 degrees turn +z into
+// +x): what the map holds at direction m is seen at direction R_y(rotation) m, which is
+// the same as looking the map up at u + rotation / 360.
+//
+// What the prefiltered maps hold (all linear RGB):
+// * irradiance: E(n) / pi = (1/pi) integral of L(w) max(0, n·w) dw, so that a Lambert
+//   surface of albedo c reflects c irradiance(n); a constant environment c gives c.
+//   Computed by direct quadrature over a 64 x 32 solid-angle-weighted copy of the source,
+//   normalised by the quadrature's own integral of the cosine (which makes a constant map
+//   exact and removes the discretisation's bias from every other).
+// * specular: kSpecularLevels maps at roughness k / (kSpecularLevels - 1): level 0 is the
+//   source (at most 512 texels wide), level k halves the resolution of level k-1 (not
+//   below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
+//   Karis's n = v = r assumption, weighted by n·l, from 128 GGX-distributed Hammersley
+//   samples, each read from the source's mip level that matches its solid angle
+//   (Colbert and Krivanek 2007, "GPU-Based Importance Sampling": filtered importance
+//   sampling, so that few samples do not alias).
+// * the BRDF LUT: 32 x 32 texels over n·v (texel centres (i + 0.5) / 32) and roughness
+//   (j / 31: 0 and 1 included, where the albedo changes fastest), holding A and B with integral of f_spec cos = F0 A + B for brdf.h's
+//   specular term (GGX, height-correlated Smith, Schlick), from 512 samples each.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "rt2/equirect.h"
+#include "rt2/ray.h"
+
+namespace rt2 {
+
+class Environment {
+ public:
+  static constexpr int kSpecularLevels = 6;  // roughness 0, 0.2, ..., 1
+
+  // The same radiance `color` from every direction (lookups return it exactly). Builds
+  // 1 x 1 maps: it does not run the prefilter.
+  static Environment uniform(const vec4& color);
+  // An image of width x height texels, linear RGB floats, row-major, 3 per texel, row 0
+  // at the top (+y), times `intensity` (>= 0). Negative values become 0 and so do NaN and
+  // infinities (counted: replaced_values()). Throws rt2::Error for an empty image, a size
+  // that does not match rgb, or a negative or non-finite intensity or rotation.
+  static Environment from_image(int width, int height, std::vector<float> rgb, float intensity,
+                                float rotation_degrees);
+  // A procedural clear sky, 256 x 128: a blue gradient from the zenith to a brighter
+  // horizon, a darker brown ground below it, and a sun (a disk of 2 degrees' radius with a
+  // soft edge and a glow) towards sun_direction, given in the map's frame (before the
+  // rotation). The sun adds about half as much irradiance as the sky; it is hidden when
+  // below the horizon. Deterministic. Throws rt2::Error for a zero or non-finite
+  // sun_direction, or a negative or non-finite intensity or rotation.
+  static Environment sky(const vec4& sun_direction, float intensity, float rotation_degrees);
+
+  // The radiance arriving from direction `dir` (unit), i.e. the background: the source map.
+  vec4 radiance(const vec4& dir) const;
+  // E(n) / pi for the unit normal n (see above).
+  vec4 irradiance(const vec4& n) const;
+  // Prefiltered radiance around the unit reflection direction r; roughness (perceptual) in
+  // [0, 1], clamped, interpolated linearly between the two nearest levels.
+  vec4 specular(const vec4& r, float roughness) const;
+  // The split-sum scale A and bias B at n·v in (0, 1] and roughness in [0, 1] (clamped).
+  void brdf_scale_bias(float n_dot_v, float roughness, float& a, float& b) const;
+
+  // Wall-clock seconds the factory spent prefiltering.
+  double prefilter_seconds() const { return prefilter_seconds_; }
+  // How many input values from_image replaced by 0 (negative, NaN or infinite).
+  std::size_t replaced_values() const { return replaced_values_; }
+
+  // The resolution of the maps, for reports and tests.
+  const EquirectMap& source_map() const { return source_; }
+  const EquirectMap& irradiance_map() const { return irradiance_; }
+  const EquirectMap& specular_map(int level) const { return specular_[std::size_t(level)]; }
+
+ private:
+  Environment() = default;
+  // Prefilters everything from source_ (with the rotation already set).
+  void prefilter();
+  // u in map space of the world direction d: the rotation is a shift in u.
+  Uv map_uv(const vec4& d) const;
+
+  EquirectMap source_;
+  EquirectMap irradiance_;
+  std::vector<EquirectMap> specular_;  // kSpecularLevels
+  std::vector<float> lut_;             // kLutSize^2 pairs (A, B), row = roughness
+  float u_shift_ = 0.0f;               // rotation / 360
+  double prefilter_seconds_ = 0.0;
+  std::size_t replaced_values_ = 0;
+};
+
+}  // namespace rt2
