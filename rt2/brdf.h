@@ -2,23 +2,33 @@
 // specular (GGX normal distribution, height-correlated Smith visibility, Schlick Fresnel)
 // plus a Lambert diffuse, in glTF 2.0's metallic-roughness parametrisation.
 //
-//   f(l, v) = kD diffuse / pi + D(h) V(l, v) F(h·v),   kD = (1 - F)(1 - metallic),
+//   f(l, v) = kD diffuse / pi + D(h) V(l, v) F(h·v),
+//   kD = (1 - metallic) (1 - E(v)) (1 - E(l)) / (1 - E_avg),
 //
 // as in learnopengl's PBR chapters (Karis 2013, "Real Shading in Unreal Engine 4"), with
 // Filament's visibility term V = G2 / (4 (n·l)(n·v)) in place of G / (4 (n·l)(n·v)).
 // Roughness is perceptual; the GGX alpha is roughness^2 (Burley 2012). Every direction is
 // unit length and points away from the surface; colours are linear RGB with w = 0.
 //
-// The diffuse share kD = 1 - F uses the Fresnel of the half vector, as learnopengl does.
-// That is not energy conserving for a dielectric seen at grazing angles (the specular
-// lobe then reflects most of the light and the diffuse still adds almost all of its own);
-// tests/rt2/brdf_test.cpp measures by how much.
+// The diffuse share. The text (reference/pbr-chapter.txt, after learnopengl) takes
+// kD = (1 - F(h·v)) (1 - metallic): the Fresnel of the one microfacet that mirrors l into
+// v stands for all the light the specular lobe reflects. That is not energy conserving: a
+// white dielectric seen at grazing angles reflects up to 1.84 times the light it receives
+// (roughness 0.05, 89 degrees; tests/rt2/brdf_test.cpp measured it), because the lobe
+// then reflects most of the light and the diffuse still adds almost all of its own. rt2
+// replaces the one Fresnel factor by what the whole lobe reflects, its directional albedo
+// E (brdf_lut.h), on both sides so that f stays reciprocal (Kelemen and Szirmay-Kalos
+// 2001; Kulla and Conty 2017): the diffuse term then reflects exactly (1 - E(v)) of the
+// light a white one would, and the BRDF's albedo E(v) + (1 - E(v)) diffuse never exceeds
+// 1. Where the lobe reflects little (a dielectric seen head-on, E ~ 0.04) the two shares
+// agree within a few per cent.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "rt2/brdf_lut.h"
 #include "rt2/ray.h"
 
 namespace rt2 {
@@ -73,14 +83,6 @@ inline vec4 fresnel_schlick(float cos_theta, const vec4& f0) {
   return f0 + (vec4(1.0f, 1.0f, 1.0f) - f0) * schlick_weight(cos_theta);
 }
 
-// The image-based lighting variant (Lagarde, as learnopengl's diffuse-irradiance
-// chapter): the grazing value is max(1 - roughness, F0) instead of 1, because a rough
-// surface's prefiltered reflection averages the Fresnel over its whole lobe.
-inline vec4 fresnel_schlick_roughness(float cos_theta, const vec4& f0, float roughness) {
-  const float r = 1.0f - roughness;
-  return f0 + (mlib::max(vec4(r, r, r), f0) - f0) * schlick_weight(cos_theta);
-}
-
 // A material at a shaded point, prepared once for every light and the environment.
 struct PbrSurface {
   vec4 diffuse;     // the Lambert colour (base_color); kD is applied in brdf()
@@ -88,7 +90,25 @@ struct PbrSurface {
   float alpha;      // GGX alpha for the analytic lights: max(roughness^2, kMinAlpha)
   float roughness;  // perceptual roughness in [0, 1], for Environment::specular and the LUT
   float metallic;   // [0, 1]
+  // diffuse (1 - metallic) / (pi (1 - E_avg)): the part of kD diffuse / pi that does not
+  // depend on the directions (set by pbr_surface and set_diffuse).
+  vec4 diffuse_scale;
 };
+
+// The lobe's directional albedo E = F0 A + B at n·v = mu (brdf_lut.h).
+inline vec4 specular_albedo(const PbrSurface& s, float mu) {
+  const SplitSum e = split_sum(mu, s.roughness);
+  return s.f0 * e.a + vec4(e.b, e.b, e.b);
+}
+
+// Sets the surface's diffuse colour (and diffuse_scale with it).
+inline void set_diffuse(PbrSurface& s, const vec4& diffuse) {
+  s.diffuse = diffuse;
+  const SplitSum avg = split_sum_average(s.roughness);
+  const vec4 keep = vec4(1.0f, 1.0f, 1.0f) - (s.f0 * avg.a + vec4(avg.b, avg.b, avg.b));
+  const vec4 safe = mlib::max(keep, vec4(1e-6f, 1e-6f, 1e-6f, 1.0f));
+  s.diffuse_scale = diffuse * ((1.0f - s.metallic) * std::numbers::inv_pi_v<float>) / safe;
+}
 
 // glTF's metallic-roughness: F0 = 0.04 (1 - metallic) + base_color metallic (0.04: the
 // reflectance of a dielectric of refractive index 1.5). metallic and roughness are
@@ -97,15 +117,18 @@ inline PbrSurface pbr_surface(const vec4& base_color, float metallic, float roug
   const float m = std::clamp(metallic, 0.0f, 1.0f);
   const float r = std::clamp(roughness, 0.0f, 1.0f);
   const float d = 0.04f * (1.0f - m);
-  return PbrSurface{base_color, vec4(d, d, d) + base_color * m, std::max(r * r, kMinAlpha), r,
-                    m};
+  PbrSurface s{base_color, vec4(d, d, d) + base_color * m, std::max(r * r, kMinAlpha), r, m, {}};
+  set_diffuse(s, base_color);
+  return s;
 }
 
-// f(l, v), the BRDF itself (not times n·l): kD diffuse / pi + D V F, F = F(h·v). n, v, l
-// unit length; 0 when l or v is at or below the surface. Reciprocal bit for bit: h·v is
-// taken as the mean of h·v and h·l (equal in exact arithmetic) and the visibility term is
-// symmetric.
-inline vec4 brdf(const PbrSurface& s, const vec4& n, const vec4& v, const vec4& l) {
+// f(l, v), the BRDF itself (not times n·l): kD diffuse / pi + D V F, F = F(h·v), kD as
+// above. n, v, l unit length; 0 when l or v is at or below the surface. `e_v` is
+// specular_albedo(s, n·v), which a caller shading many lights computes once. Reciprocal
+// bit for bit when e_v is: h·v is taken as the mean of h·v and h·l (equal in exact
+// arithmetic), and the visibility and kD terms are symmetric.
+inline vec4 brdf(const PbrSurface& s, const vec4& n, const vec4& v, const vec4& l,
+                 const vec4& e_v) {
   const float n_dot_l = dot(n, l);
   const float n_dot_v = dot(n, v);
   if (!(n_dot_l > 0.0f && n_dot_v > 0.0f)) return vec4();
@@ -116,8 +139,11 @@ inline vec4 brdf(const PbrSurface& s, const vec4& n, const vec4& v, const vec4& 
   const vec4 f = fresnel_schlick(h_dot_v, s.f0);
   const float dv = ggx_d(n_dot_h, float(dot(n_x_h, n_x_h)), s.alpha) *
                    smith_visibility(n_dot_v, n_dot_l, s.alpha);
-  const vec4 k_d = (vec4(1.0f, 1.0f, 1.0f) - f) * (1.0f - s.metallic);
-  return k_d * s.diffuse * std::numbers::inv_pi_v<float> + f * dv;
+  const vec4 one(1.0f, 1.0f, 1.0f);
+  return s.diffuse_scale * (one - e_v) * (one - specular_albedo(s, n_dot_l)) + f * dv;
+}
+inline vec4 brdf(const PbrSurface& s, const vec4& n, const vec4& v, const vec4& l) {
+  return brdf(s, n, v, l, specular_albedo(s, float(dot(n, v))));
 }
 
 // f(l, v) n·l: what the renderer multiplies by a light's radiance.

@@ -23,8 +23,6 @@ constexpr int kIrradianceHeight = 32;
 constexpr int kMaxSpecularWidth = 512;  // level 0
 constexpr int kMinSpecularWidth = 32;   // the roughest levels
 constexpr std::uint32_t kSpecularSamples = 128;
-constexpr int kLutSize = 32;
-constexpr std::uint32_t kLutSamples = 512;
 constexpr int kSkyWidth = 256;
 constexpr int kSkyHeight = 128;
 
@@ -178,40 +176,6 @@ EquirectMap prefilter_specular(const MipChain& mips, float roughness, int w, int
   return out;
 }
 
-// The split-sum LUT: for n·v at the texel centres and roughness j / (kLutSize - 1), A = integral of
-// f_spec cos (1 - Fc) and B = integral of f_spec cos Fc with Fc = (1 - v·h)^5 and F = 1
-// (so that with Schlick's F = F0 (1 - Fc) + Fc the integral is F0 A + B), by GGX
-// importance sampling: f_spec cos / pdf = D V n·l / (D n·h / (4 v·h)) = 4 V n·l v·h / n·h.
-std::vector<float> integrate_brdf_lut() {
-  std::vector<float> lut(std::size_t(2 * kLutSize * kLutSize));
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int j = 0; j < kLutSize; ++j) {
-    const float roughness = float(j) / float(kLutSize - 1);
-    const float alpha = roughness * roughness;
-    for (int i = 0; i < kLutSize; ++i) {
-      const float n_dot_v = (float(i) + 0.5f) / float(kLutSize);
-      const vec4 v(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v);
-      double a = 0.0, b = 0.0;
-      for (std::uint32_t k = 0; k < kLutSamples; ++k) {
-        const vec4 h = sample_ggx_half(hammersley(k, kLutSamples), alpha);
-        const float v_dot_h = dot(v, h);
-        const vec4 l = 2.0f * v_dot_h * h - v;
-        const float n_dot_l = l[2];
-        if (n_dot_l <= 0.0f || v_dot_h <= 0.0f) continue;
-        const float g =
-            4.0f * smith_visibility(n_dot_v, n_dot_l, alpha) * n_dot_l * v_dot_h / h[2];
-        const float fc = schlick_weight(v_dot_h);
-        a += double((1.0f - fc) * g);
-        b += double(fc * g);
-      }
-      const std::size_t t = 2 * (std::size_t(j) * kLutSize + std::size_t(i));
-      lut[t] = float(a / kLutSamples);
-      lut[t + 1] = float(b / kLutSamples);
-    }
-  }
-  return lut;
-}
-
 // GLSL's smoothstep: 0 below e0, 1 above e1, a cubic between (e0 > e1 flips it).
 float smoothstep(float e0, float e1, float x) {
   const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
@@ -248,10 +212,6 @@ Environment Environment::uniform(const vec4& color) {
   env.source_.at(0, 0) = color;
   env.irradiance_ = env.source_;
   env.specular_.assign(kSpecularLevels, env.source_);
-  const auto start = std::chrono::steady_clock::now();
-  env.lut_ = integrate_brdf_lut();
-  env.prefilter_seconds_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return env;
 }
 
@@ -328,7 +288,6 @@ void Environment::prefilter() {
     const float roughness = float(k) / float(kSpecularLevels - 1);
     specular_.push_back(prefilter_specular(mips, roughness, w, h));
   }
-  lut_ = integrate_brdf_lut();
   prefilter_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -350,28 +309,6 @@ vec4 Environment::specular(const vec4& r, float roughness) const {
   const vec4 a = specular_[std::size_t(k)].bilinear(uv);
   const vec4 b = specular_[std::size_t(k) + 1].bilinear(uv);
   return a + (b - a) * (x - float(k));
-}
-
-void Environment::brdf_scale_bias(float n_dot_v, float roughness, float& a, float& b) const {
-  // n·v: texel centres at (i + 0.5) / kLutSize, clamped to the outermost ones;
-  // roughness: j / (kLutSize - 1), from 0 to 1.
-  const float top = float(kLutSize - 1);
-  const float x = std::clamp(clamp01(n_dot_v) * float(kLutSize) - 0.5f, 0.0f, top);
-  const float y = clamp01(roughness) * top;
-  const int x0 = std::min(int(x), kLutSize - 2), y0 = std::min(int(y), kLutSize - 2);
-  const float tx = x - float(x0), ty = y - float(y0);
-  const auto at = [&](int i, int j, int c) {
-    return lut_[2 * (std::size_t(j) * kLutSize + std::size_t(i)) + std::size_t(c)];
-  };
-  float out[2];
-  for (int c = 0; c < 2; ++c) {
-    const float top_row = at(x0, y0, c) + (at(x0 + 1, y0, c) - at(x0, y0, c)) * tx;
-    const float bottom_row =
-        at(x0, y0 + 1, c) + (at(x0 + 1, y0 + 1, c) - at(x0, y0 + 1, c)) * tx;
-    out[c] = top_row + (bottom_row - top_row) * ty;
-  }
-  a = out[0];
-  b = out[1];
 }
 
 }  // namespace rt2

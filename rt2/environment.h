@@ -3,8 +3,8 @@
 // "Real Shading in Unreal Engine 4"; learnopengl's IBL chapters).
 //
 // A surface lit by the environment reflects
-//   diffuse:  kD base_color irradiance(n)
-//   specular: specular(r, roughness) (F0 A + B),  brdf_scale_bias(n·v, roughness) -> A, B
+//   diffuse:  (1 - metallic)(1 - E(v)) base_color irradiance(n)
+//   specular: specular(r, roughness) E(v),  E(v) = F0 A + B from brdf_lut.h's split_sum
 // with r the mirror direction of v. The factories prefilter once per scene (in parallel
 // with OpenMP); the lookups are bilinear and cheap, made per shaded point.
 //
@@ -26,9 +26,8 @@
 //   samples, each read from the source's mip level that matches its solid angle
 //   (Colbert and Krivanek 2007, "GPU-Based Importance Sampling": filtered importance
 //   sampling, so that few samples do not alias).
-// * the BRDF LUT: 32 x 32 texels over n·v (texel centres (i + 0.5) / 32) and roughness
-//   (j / 31: 0 and 1 included, where the albedo changes fastest), holding A and B with integral of f_spec cos = F0 A + B for brdf.h's
-//   specular term (GGX, height-correlated Smith, Schlick), from 512 samples each.
+// * the split-sum table A, B with integral of f_spec cos = F0 A + B for brdf.h's specular
+//   term: brdf_lut.h (one table per process, shared with brdf.h's diffuse term).
 #pragma once
 
 #include <cstddef>
@@ -67,8 +66,6 @@ class Environment {
   // Prefiltered radiance around the unit reflection direction r; roughness (perceptual) in
   // [0, 1], clamped, interpolated linearly between the two nearest levels.
   vec4 specular(const vec4& r, float roughness) const;
-  // The split-sum scale A and bias B at n·v in (0, 1] and roughness in [0, 1] (clamped).
-  void brdf_scale_bias(float n_dot_v, float roughness, float& a, float& b) const;
 
   // Wall-clock seconds the factory spent prefiltering.
   double prefilter_seconds() const { return prefilter_seconds_; }
@@ -90,7 +87,6 @@ class Environment {
   EquirectMap source_;
   EquirectMap irradiance_;
   std::vector<EquirectMap> specular_;  // kSpecularLevels
-  std::vector<float> lut_;             // kLutSize^2 pairs (A, B), row = roughness
   float u_shift_ = 0.0f;               // rotation / 360
   double prefilter_seconds_ = 0.0;
   std::size_t replaced_values_ = 0;

@@ -31,6 +31,7 @@ vec4 polar(float theta, float phi) {
 // The surface's specular lobe alone: the same F0 and alpha, no diffuse.
 PbrSurface specular_only(PbrSurface s) {
   s.metallic = 1.0f;
+  s.diffuse_scale = vec4();
   return s;
 }
 
@@ -70,7 +71,9 @@ constexpr int kFurnaceSamples = 4096;
 float furnace_roughness(int i) { return 0.05f + 0.95f * float(i) / 7.0f; }
 
 // The white furnace: a white surface of `metallic` reflects at most all the light, for
-// every roughness of the grid and `views` view angles from 0 to max_view_degrees.
+// every roughness of the grid and `views` view angles from 0 to max_view_degrees (within
+// 2e-3: the sampling errors of this integral and of brdf_lut.h's table, ~1e-3 each at 89
+// degrees).
 void expect_furnace(float metallic, float max_view_degrees, int views) {
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < views; ++j) {
@@ -78,36 +81,29 @@ void expect_furnace(float metallic, float max_view_degrees, int views) {
       const float theta = max_view_degrees * kDeg * float(j) / float(views - 1);
       const double albedo = directional_albedo(pbr_surface(kWhite, metallic, roughness), theta,
                                                kFurnaceSamples);
-      EXPECT_LE(albedo, 1.0 + 1e-3) << "roughness " << roughness << ", view " << theta / kDeg;
+      EXPECT_LE(albedo, 1.0 + 2e-3) << "roughness " << roughness << ", view " << theta / kDeg;
     }
 }
 
 TEST(BrdfFurnace, MetalReflectsAtMostAllLight) { expect_furnace(1.0f, 89.0f, 8); }
 
-// The diffuse share kD = (1 - F(h·v)) (1 - metallic) of learnopengl's model does not know
-// how much the specular lobe already reflected, so a dielectric's albedo exceeds 1 once
-// the view is more grazing than ~45 degrees (see the next test); up to 40 it holds.
-TEST(BrdfFurnace, DielectricReflectsAtMostAllLightUpTo40Degrees) {
-  expect_furnace(0.0f, 40.0f, 5);
-}
+// With the text's kD = (1 - F(h·v)) (1 - metallic) this failed from ~45 degrees on (1.84 at
+// roughness 0.05 and 89 degrees); brdf.h's kD, (1 - E(v))(1 - E(l)) / (1 - E_avg), holds it
+// on the whole grid.
+TEST(BrdfFurnace, DielectricReflectsAtMostAllLight) { expect_furnace(0.0f, 89.0f, 8); }
 
-// Prints the dielectric's albedo where it exceeds 1 (measured: up to 1.84 at roughness
-// 0.05 and 89 degrees), and checks that it stays bounded: the specular lobe reflects at
-// most 1 and the diffuse at most 1.
-TEST(BrdfFurnace, DielectricGrazingExcessIsBounded) {
-  double worst = 0.0;
-  for (int i = 0; i < 8; ++i) {
-    std::printf("  dielectric albedo, roughness %.2f:", furnace_roughness(i));
+// A white dielectric reflects in its two terms all the light it receives, E(v) specular
+// and 1 - E(v) diffuse, up to the table's and this integral's errors: the energy the
+// text's kD added at grazing angles is not bought by losing some elsewhere.
+TEST(BrdfFurnace, WhiteDielectricLosesNoLight) {
+  for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j) {
-      const float theta = 89.0f * kDeg * float(j) / 7.0f;
+      const float theta = 85.0f * kDeg * float(j) / 7.0f;
       const double albedo = directional_albedo(pbr_surface(kWhite, 0.0f, furnace_roughness(i)),
                                                theta, kFurnaceSamples);
-      std::printf(" %.3f", albedo);
-      worst = std::max(worst, albedo);
+      EXPECT_NEAR(albedo, 1.0, 0.01) << "roughness " << furnace_roughness(i) << ", view "
+                                     << theta / kDeg;
     }
-    std::printf("\n");
-  }
-  EXPECT_LT(worst, 2.0);
 }
 
 TEST(Brdf, IsReciprocal) {
@@ -144,10 +140,6 @@ TEST(Fresnel, IsF0AtNormalIncidenceAndOneAtGrazing) {
   // cos outside [0, 1] is clamped.
   EXPECT_EQ(fresnel_schlick(1.5f, f0)[0], f0[0]);
   EXPECT_FLOAT_EQ(fresnel_schlick(-0.5f, f0)[0], 1.0f);
-  // The roughness variant tends to max(1 - roughness, F0) at grazing.
-  EXPECT_FLOAT_EQ(fresnel_schlick_roughness(0.0f, f0, 0.8f)[0], 0.2f);
-  EXPECT_FLOAT_EQ(fresnel_schlick_roughness(0.0f, f0, 0.8f)[2], 0.95f);
-  EXPECT_EQ(fresnel_schlick_roughness(1.0f, f0, 0.8f)[1], f0[1]);
 }
 
 TEST(Brdf, SurfaceFollowsTheMetallicWorkflow) {
