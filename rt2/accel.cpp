@@ -17,9 +17,10 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
   std::vector<Aabb> boxes;
   sources.reserve(scene.triangle_count());
   boxes.reserve(scene.triangle_count());
-  bool any_normals = false;
+  bool any_normals = false, any_texcoords = false;
   for (const Mesh& m : scene.meshes) {
     any_normals |= !m.normals.empty() && !m.faces.empty();
+    any_texcoords |= !m.texcoords.empty() && !m.faces.empty();
     for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
       Aabb b;
       for (std::uint32_t v : m.faces[f]) b.grow(m.positions[v]);
@@ -32,6 +33,7 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
   acc.tris.reserve(bvh.order.size());
   acc.tri_materials.reserve(bvh.order.size());
   if (any_normals) acc.tri_normals.reserve(bvh.order.size());
+  if (any_texcoords) acc.tri_texcoords.reserve(bvh.order.size());
   // At most one partly filled block per leaf.
   acc.blocks.reserve(bvh.order.size() / TriangleBlock::kLanes + bvh.stats.leaves);
   for (std::uint32_t k : bvh.order) {
@@ -40,6 +42,12 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
     const Triangle tri = Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
     acc.tris.push_back(tri);
     acc.tri_materials.push_back(m.face_materials[sources[k].face]);
+    if (any_texcoords) {
+      if (m.texcoords.empty())
+        acc.tri_texcoords.push_back({});
+      else
+        acc.tri_texcoords.push_back({m.texcoords[f[0]], m.texcoords[f[1]], m.texcoords[f[2]]});
+    }
     if (!any_normals) continue;
     if (m.normals.empty()) {
       const vec4 nf = normalize(tri.n);

@@ -37,6 +37,8 @@ struct Accel {
   std::vector<Triangle> tris;
   std::vector<std::uint32_t> tri_materials;
   std::vector<std::array<vec4, 3>> tri_normals;  // per-vertex normals; empty if all flat
+  // Per-vertex texture coordinates (u, v); empty if no mesh has any (then all are 0).
+  std::vector<std::array<std::array<float, 2>, 3>> tri_texcoords;
 
   // Spheres: a binary tree whose leaf [first, first + count) holds spheres[first ...].
   Bvh sphere_bvh;

@@ -1,6 +1,10 @@
 // rt2/compiled_scene.cpp — compiling a Scene (see compiled_scene.h).
 #include "rt2/compiled_scene.h"
 
+#include <utility>
+
+#include "rt2/image_io.h"
+
 namespace rt2 {
 
 CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config, Isa isa) {
@@ -8,6 +12,24 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
   CompiledScene c;
   c.accel = Accel::build(scene, config, isa);
   c.materials = scene.materials;
+  // Shadow rays pass physically based materials by their transmission (query.h reads
+  // `transparency`; the pbr shading step never does).
+  for (Material& m : c.materials)
+    if (m.model == Shading::pbr) m.transparency = m.transmission * (1.0f - m.metallic);
+  c.textures = TextureSet(scene.textures);
+  if (scene.environment) {
+    const EnvironmentDesc& e = *scene.environment;
+    if (e.image.empty()) {
+      c.environment = Environment::sky(e.sun_direction, e.intensity, e.rotation_degrees);
+    } else {
+      Image img = read_image(e.image);
+      c.environment = Environment::from_image(img.width, img.height, std::move(img.rgb),
+                                              e.intensity, e.rotation_degrees);
+    }
+    c.has_environment = true;
+  } else {
+    c.environment = Environment::uniform(scene.ambient);
+  }
   c.lights = scene.lights;
   c.ambient = scene.ambient;
   c.background = scene.background;

@@ -13,11 +13,13 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/environment.h"
 #include "rt2/light.h"
 #include "rt2/light_bvh.h"
 #include "rt2/light_path.h"
 #include "rt2/material.h"
 #include "rt2/scene.h"
+#include "rt2/texture.h"
 
 namespace rt2 {
 
@@ -29,13 +31,20 @@ struct CompiledScene {
   std::vector<LightPath> light_paths;    // where move_lights takes each light
   Aabb light_path_bounds;                // a box holding the paths of the lights with a range
   vec4 ambient;     // I_amb
-  vec4 background;  // colour of rays that hit nothing
+  vec4 background;  // colour of rays that hit nothing, without an environment
+  TextureSet textures;  // Scene::textures, opened
+  // The light from far away (Scene::environment), prefiltered; without one, a uniform
+  // environment of the ambient colour (physically based materials' ambient light), and
+  // rays that miss take `background`.
+  Environment environment = Environment::uniform(vec4(0.0f, 0.0f, 0.0f));
+  bool has_environment = false;
   vec4 origin;      // where these coordinates' origin is in the world (Scene::origin)
   float offset_scale = 1.0f;  // the scene's size, for secondary-ray origins (offset.h)
   unsigned features = 0;      // features.h, for reports
 
   // Validates `scene` (Scene::validate) and compiles it: the trees with `config`, the
-  // triangles' `bvh_width(isa)` wide.
+  // triangles' `bvh_width(isa)` wide; opens its textures and loads and prefilters its
+  // environment (throws rt2::Error "FILE: reason" when one cannot be read).
   static CompiledScene compile(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
 
   // Moves every light to where its path is at `seconds` (light_path.h) and rebuilds

@@ -32,6 +32,20 @@ struct ImageCodec {
   // tagged linear) rather than linear.
   std::string (*decode)(const std::string& path, std::vector<float>& rgb, int& width,
                         int& height, bool& srgb);
+
+  // Textures through OIIO's TextureSystem (rt2/texture.h): mip-mapped (made on first use
+  // for files that have no mip levels), tiled and cached, filtered over a footprint.
+  // A system of its own (not OIIO's shared one); destroyed by texture_system_destroy.
+  void* (*texture_system_create)();
+  void (*texture_system_destroy)(void* system);
+  // A handle for the image file `path`, checked to open, and its channel count; nullptr and
+  // `why` when it cannot be opened.
+  void* (*texture_open)(void* system, const std::string& path, int& channels, std::string& why);
+  // The filtered RGB at texture coordinates (s, t) (OIIO's: (0, 0) the top-left corner,
+  // repeating), with the footprint's derivatives along the image's x and y; a grey image
+  // (channels < 3) is replicated. Thread-safe.
+  void (*texture_sample)(void* system, void* handle, int channels, float s, float t, float dsdx,
+                         float dtdx, float dsdy, float dtdy, float* rgb);
 };
 
 // The codec, loaded on the first call (thread-safe). Throws rt2::Error when the library

@@ -2,6 +2,7 @@
 // lib/librt2_image_codec.so (see image_codec.h). The only file of rt2 that includes OIIO.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
 
 #include <algorithm>
 
@@ -88,7 +89,56 @@ std::string decode(const std::string& path, std::vector<float>& rgb, int& width,
   return "";
 }
 
-const rt2::ImageCodec kCodec{can_encode, encode, decode};
+OIIO::TextureSystem* system_of(void* s) { return static_cast<OIIO::TextureSystem*>(s); }
+
+void* texture_system_create() {
+  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(/*shared=*/false);
+  ts->attribute("automip", 1);        // mip levels for plain PNG/JPEG files, made in memory
+  ts->attribute("autotile", 64);      // and tiles, so a large image is read in pieces
+  ts->attribute("max_memory_MB", 1024.0f);
+  return ts;
+}
+
+void texture_system_destroy(void* s) { OIIO::TextureSystem::destroy(system_of(s)); }
+
+void* texture_open(void* s, const std::string& path, int& channels, std::string& why) {
+  OIIO::TextureSystem* ts = system_of(s);
+  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
+  ImageSpec spec;
+  if (!h || !ts->get_imagespec(h, nullptr, 0, spec)) {
+    why = one_line(ts->geterror());
+    return nullptr;
+  }
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
+    why = "the image has no pixels";
+    return nullptr;
+  }
+  channels = spec.nchannels;
+  return h;
+}
+
+void texture_sample(void* s, void* handle, int nchannels, float u, float v, float dsdx,
+                    float dtdx, float dsdy, float dtdy, float* rgb) {
+  OIIO::TextureSystem* ts = system_of(s);
+  OIIO::TextureOpt opt;
+  opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+  opt.fill = 0.0f;
+  float out[3] = {0.0f, 0.0f, 0.0f};
+  // Grey images give one channel: it is replicated (fill would make G and B 0).
+  const auto h = static_cast<OIIO::TextureSystem::TextureHandle*>(handle);
+  const int channels = nchannels < 3 ? 1 : 3;
+  if (!ts->texture(h, ts->get_perthread_info(), opt, u, v, dsdx, dtdx, dsdy, dtdy, channels, out))
+    (void)ts->geterror();  // a read failure: black, and the message is dropped
+  if (channels == 1) out[1] = out[2] = out[0];
+  rgb[0] = out[0];
+  rgb[1] = out[1];
+  rgb[2] = out[2];
+}
+
+const rt2::ImageCodec kCodec{can_encode,         encode,
+                             decode,             texture_system_create,
+                             texture_system_destroy, texture_open,
+                             texture_sample};
 
 }  // namespace
 

@@ -42,7 +42,7 @@ void check_writable_image(const std::string& path) {
   if (!why.empty()) throw Error(path + ": unsupported output format '" + ext + "' (" + why + ")");
 }
 
-void write_image(const std::string& path, const Image& image) {
+void write_image(const std::string& path, const Image& image, const Display& display) {
   try {
     check_writable_image(path);
   } catch (const Error& e) {
@@ -51,8 +51,9 @@ void write_image(const std::string& path, const Image& image) {
   const bool linear = is_linear_format(path);
   std::vector<float> encoded;
   if (!linear) {
-    encoded.resize(image.rgb.size());
-    for (std::size_t i = 0; i < encoded.size(); ++i) encoded[i] = srgb_encode(image.rgb[i]);
+    encoded = image.rgb;
+    tonemap(encoded, display);
+    for (float& v : encoded) v = srgb_encode(v);
   }
   std::string bytes;
   const std::string why =

@@ -4,7 +4,8 @@
 // whatever else the codec can write to memory). Float formats (.exr, .hdr, .tif) store the
 // renderer's linear RGB values as they are. Display formats (.png, .jpg, .ppm and every
 // other 8-bit format) store sRGB-encoded values (rt2/srgb.h), clamped to [0, 1] and
-// rounded to 8 bits, and are tagged sRGB. Reading undoes the encoding, so a reference image
+// rounded to 8 bits, and are tagged sRGB; before the encoding, a Display (tonemap.h) maps
+// them through an exposure and a tone curve (the default, none, leaves them as they are). Reading undoes the encoding, so a reference image
 // is compared in linear values whatever its format.
 //
 // Images are encoded in memory (rt2/image_codec.h, OpenImageIO loaded on first use) and
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "rt2/image.h"
+#include "rt2/tonemap.h"
 
 namespace rt2 {
 
@@ -27,7 +29,8 @@ bool is_linear_format(const std::string& path);
 
 // Writes the linear RGB `image` as above. Throws rt2::Error "cannot write PATH: reason" on
 // any failure, leaving no file (and no temporary file) behind.
-void write_image(const std::string& path, const Image& image);
+// Display formats take `display`'s exposure and curve first; float formats ignore it.
+void write_image(const std::string& path, const Image& image, const Display& display = {});
 
 // Reads the regular file `path` (not a device or pipe, which may never end) as linear RGB
 // floats. Throws rt2::Error "PATH: reason" when it cannot.

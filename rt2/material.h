@@ -49,11 +49,16 @@ struct Material {
   // Textures (either model): base_color_texture multiplies base_color (pbr) or Kd (phong,
   // MTL's map_Kd), sRGB-encoded; metallic_roughness_texture is linear, roughness in G and
   // metallic in B, multiplying the factors; normal_texture a tangent-space normal map;
-  // emissive_texture multiplies emissive, sRGB-encoded.
+  // emissive_texture multiplies emissive, sRGB-encoded. A texture needs texture coordinates
+  // (meshes' texcoords; spheres and planes have their own, see batches.h).
   std::uint32_t base_color_texture = kNoTexture;
   std::uint32_t metallic_roughness_texture = kNoTexture;
   std::uint32_t normal_texture = kNoTexture;
   std::uint32_t emissive_texture = kNoTexture;
+  // MTL's map_Pr and map_Pm: roughness and metallic each in a grey image (its first
+  // channel), multiplying the factors like metallic_roughness_texture's channels.
+  std::uint32_t roughness_texture = kNoTexture;
+  std::uint32_t metallic_texture = kNoTexture;
 
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.

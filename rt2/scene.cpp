@@ -105,7 +105,8 @@ void Scene::validate() const {
     check(m.transmission >= 0.0f && m.transmission <= 1.0f, at + "transmission must be in [0, 1]");
     check(std::isfinite(m.normal_scale), at + "normal_scale must be finite");
     for (const std::uint32_t t : {m.base_color_texture, m.metallic_roughness_texture,
-                                  m.normal_texture, m.emissive_texture})
+                                  m.normal_texture, m.emissive_texture, m.roughness_texture,
+                                  m.metallic_texture})
       check(t == kNoTexture || t < textures.size(), at + "texture index out of range");
   }
   if (environment) {

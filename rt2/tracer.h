@@ -36,136 +36,36 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
-#include "rt2/cluster_visibility.h"
+#include "rt2/batches.h"
 #include "rt2/offset.h"
 #include "rt2/optics.h"
+#include "rt2/pbr_shade.h"
 #include "rt2/query.h"
 #include "rt2/render.h"
 
 namespace rt2::RT2_ISA {
 namespace detail {
 
-// A ray of the ray tree, and whose sample it adds to.
-struct PathRay {
-  Ray ray;
-  float weight;      // product of Kr / Kt along the path
-  std::uint32_t sample;  // index into the block's sample colours
-  int depth;
-  RayKind kind;
-};
-
-// A shadow ray, with the light's unshadowed term at the point it leaves.
-struct ShadowRay {
-  Ray ray;
-  vec4 term;  // weight x (Kd (L·N) + Ks (R·V)^n) x light radiance
-  float distance;
-  std::uint32_t sample;
-  std::uint32_t light;  // index into CompiledScene::lights
-  bool unoccluded;      // proven to pass whole (cluster_visibility.h): not traced
-};
-
-// What shading needs to know about a hit.
-struct SurfacePoint {
-  vec4 p;                   // on the surface, computed precisely (see offset.h)
-  vec4 ng;                  // unit geometric normal, on the side the ray came from
-  vec4 ns;                  // unit shading normal, same side
-  vec4 above;               // p moved off the surface along ng: where shadow and reflected
-                            // rays start (offset.h)
-  bool entering;            // the ray hit the outside (against the outward normal)
-  std::uint32_t material;
-};
-
-// The lights a shading point considers: CompiledScene::lights[index[k]] for k < count, or
-// every light (index null, count = all).
-struct LightList {
-  const std::uint32_t* index = nullptr;
-  std::size_t count = 0;
-  // Per light of the list, whether every shadow ray from the list's cluster to it provably
-  // meets nothing (cluster_visibility.h); null: nothing proven.
-  const std::uint8_t* sees = nullptr;
-  std::uint32_t operator[](std::size_t k) const {
-    return index ? index[k] : static_cast<std::uint32_t>(k);
-  }
-};
-
-// A shadow ray's light and its index in the batch, for grouping the batch by light.
-struct LightRay {
-  std::uint32_t light, ray;
-};
-
-// The batches of one thread, reused from block to block (no allocation once grown).
-struct Batches {
-  std::vector<PathRay> rays, next;
-  std::vector<std::uint32_t> packet_begin;  // the primary batch's packets (generate)
-  std::vector<Hit> hits;                    // per ray of `rays`
-  std::vector<SurfacePoint> points;         // per ray of `rays` that hit
-  // Light lists: list k is light_items[list_begin[k], list_begin[k + 1]); the hit of ray
-  // i uses list list_of[i]. No lists: every hit considers every light.
-  std::vector<std::uint32_t> light_items, list_begin, list_of;
-  std::vector<std::uint8_t> list_sees;  // parallel to light_items (see LightList::sees)
-  ClusterVisibility visibility;
-  std::vector<std::uint32_t> to_trace;  // the shadow rays to trace
-  std::vector<std::uint32_t> found;     // one query's answer
-  std::vector<float> depth;             // clustered culling: per ray, its hit's depth
-  std::vector<Aabb> cluster_bounds;     // clustered culling: per slice
-  std::vector<ShadowRay> shadows;
-  std::vector<float> passed;              // per shadow ray: the light that passes
-  std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
-  std::vector<std::uint32_t> light_begin;
-  std::vector<LightRay> light_rays;
-  std::vector<vec4> colors;
-};
-
-inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
-                               float offset_scale) {
-  SurfacePoint s;
-  const std::uint32_t i = prim_index(h.prim);
-  if (prim_tag(h.prim) == kTriangleTag) {
-    const Triangle& tri = acc.tris[i];
-    s.p = tri.point(h.u, h.v);  // from barycentrics: precise, see offset.h
-    s.ng = normalize(tri.n);
-    if (acc.tri_normals.empty()) {
-      s.ns = s.ng;
-    } else {
-      const auto& n = acc.tri_normals[i];
-      s.ns = normalize((1.0f - h.u - h.v) * n[0] + h.u * n[1] + h.v * n[2]);
-    }
-  } else if (prim_tag(h.prim) == kSphereTag) {
-    const Sphere& sp = acc.spheres[i];
-    s.ng = sphere_normal(sp, ray.at(h.t));
-    s.p = sp.center + s.ng * sp.radius;  // re-projected onto the surface
-    s.ns = s.ng;
-  } else {
-    const Plane& pl = acc.planes[i];
-    const vec4 q = ray.at(h.t);
-    s.p = q - pl.n * (float(dot(q, pl.n)) + pl.d);  // projected onto the plane
-    s.ng = s.ns = pl.n;
-  }
-  s.material = acc.material_of(h.prim);
-  s.entering = dot(ray.dir, s.ng) < 0.0f;
-  if (!s.entering) {
-    s.ng = -s.ng;
-    s.ns = -s.ns;
-  }
-  if (!(dot(s.ns, ray.dir) < 0.0f)) s.ns = s.ng;  // an interpolated normal facing away
-  s.above = offset_ray_origin(s.p, s.ng, offset_scale);
-  return s;
-}
-
 // Stage 3 for one hit: I_local = Ka I_amb now, and for each light of `lights` in range
 // that reaches the surface the term Kd I (L·N) + Ks I (R·V)^n (times the light's range
 // window, light.h) into the shadow batch, to be scaled by what passes (thesis 3.2; SPEC
 // "Shading"). `lights` holds every light in range, in scene order, whatever the culling.
 inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
-                  LightList lights, Batches& b, RayCounts& counts) {
+                  LightList lights, float pixel_angle, Batches& b, RayCounts& counts) {
   const Material& m = sc.materials[s.material];
   b.colors[r.sample] += r.weight * (m.ambient * sc.ambient);
   ++counts.lights.points;
   counts.lights.considered += lights.count;
   if (lights.count == 0) return;
-  const vec4 kd = m.diffuse_at(s.p + sc.origin);  // textures live in world coordinates
+  vec4 kd = m.diffuse_at(s.p + sc.origin);  // the checker lives in world coordinates
+  if (m.base_color_texture != kNoTexture) {  // MTL's map_Kd
+    const TexturePoint tp = texcoords_at(sc.accel, s);
+    kd *= sc.textures.sample(m.base_color_texture, tp.u, tp.v,
+                             (r.travelled + s.t) * pixel_angle * tp.per_world);
+  }
   const vec4& origin = s.above;
   const vec4 view = -r.ray.dir;
   for (std::size_t k = 0; k < lights.count; ++k) {
@@ -200,18 +100,6 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
   }
 }
 
-// Appends a child of `parent` to the next batch, field by field (see shade).
-MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, float weight,
-                               const PathRay& parent, RayKind kind) {
-  PathRay& pr = b.next.emplace_back();
-  pr.ray.org = org;
-  pr.ray.dir = dir;
-  pr.weight = weight;
-  pr.sample = parent.sample;
-  pr.depth = parent.depth + 1;
-  pr.kind = kind;
-}
-
 // Stage 3's secondary rays: refraction (or, on total internal reflection, its share
 // reflected) and reflection, when deep and heavy enough.
 inline void spawn(const CompiledScene& sc, const RenderSettings& st, const PathRay& r,
@@ -219,21 +107,23 @@ inline void spawn(const CompiledScene& sc, const RenderSettings& st, const PathR
   if (r.depth >= st.depth) return;
   const Material& m = sc.materials[s.material];
   if (m.transparency > 0.0f) {
-    const float w = r.weight * m.transparency;
-    if (w > st.min_weight) {
+    const vec4 w = r.weight * m.transparency;
+    if (heavy_enough(w, st.min_weight)) {
       const float eta = s.entering ? 1.0f / m.ior : m.ior;
       vec4 t;
       if (refract(r.ray.dir, s.ns, eta, t))
         push_path_ray(b, offset_ray_origin(s.p, -s.ng, sc.offset_scale), t, w, r,
-                      RayKind::refraction);
+                      RayKind::refraction, r.travelled + s.t);
       else  // total internal reflection: the transmitted share is reflected
-        push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection);
+        push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection,
+                      r.travelled + s.t);
     }
   }
   if (m.reflectivity > 0.0f) {
-    const float w = r.weight * m.reflectivity;
-    if (w > st.min_weight)
-      push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection);
+    const vec4 w = r.weight * m.reflectivity;
+    if (heavy_enough(w, st.min_weight))
+      push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection,
+                    r.travelled + s.t);
   }
 }
 
@@ -246,7 +136,10 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
   const auto& offsets = r.offsets();
   const int samples = s1 - s0, bw = block.x1 - block.x0;
   b.rays.clear();
-  b.packet_begin.assign(1, 0);
+  // clear + push_back, not assign(1, 0): GCC outlines vector<uint32_t>'s fill in the AVX-512
+  // unit only, a std:: function with wide instructions that isa_test rightly flags
+  b.packet_begin.clear();
+  b.packet_begin.push_back(0);
   for (int gy = block.y0; gy < block.y1; gy += 4)
     for (int gx = block.x0; gx < block.x1; gx += 4)
       for (int k = s0; k < s1; ++k) {
@@ -255,7 +148,8 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
           for (int x = gx; x < std::min(gx + 4, block.x1); ++x) {
             PathRay& pr = b.rays.emplace_back();
             pr.ray = cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height);
-            pr.weight = 1.0f;
+            pr.weight = vec4(1.0f, 1.0f, 1.0f, 1.0f);
+            pr.travelled = 0.0f;
             pr.sample = static_cast<std::uint32_t>(((y - block.y0) * bw + x - block.x0) * samples +
                                                    k - s0);
             pr.depth = 0;
@@ -322,7 +216,8 @@ inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts
   const RenderSettings& st = r.settings();
   const std::size_t n = b.rays.size();
   b.light_items.clear();
-  b.list_begin.assign(1, 0);
+  b.list_begin.clear();
+  b.list_begin.push_back(0);
   b.list_of.resize(n);
   b.list_sees.clear();
   // A list for the hits inside `cluster`: its lights, and which of them every hit there
@@ -412,25 +307,37 @@ inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts
 // surface point is made here (the first two steps are skipped: one pass over the hits).
 inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& counts) {
   const CompiledScene& sc = r.scene();
+  const RenderSettings& st = r.settings();
+  // the angle a pixel spans at the image centre: a texture lookup's footprint per distance
+  const float pixel_angle =
+      2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
+  const auto shade_one = [&](const PathRay& pr, const SurfacePoint& s, LightList lights) {
+    if (sc.materials[s.material].model == Shading::pbr) {
+      PbrPoint p;
+      shade_pbr(sc, pr, s, lights, pixel_angle, b, counts, p);
+      spawn_pbr(sc, st, pr, s, p, b);
+    } else {
+      shade(sc, pr, s, lights, pixel_angle, b, counts);
+      spawn(sc, st, pr, s, b);
+    }
+  };
   for (std::size_t i = 0; i < b.rays.size(); ++i) {
     const PathRay& pr = b.rays[i];
     counts.reflection += pr.kind == RayKind::reflection;
     counts.refraction += pr.kind == RayKind::refraction;
     if (!b.hits[i].found()) {
-      b.colors[pr.sample] += pr.weight * sc.background;
+      b.colors[pr.sample] += pr.weight * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
+                                                             : sc.background);
       continue;
     }
     if (lists) {
       const std::uint32_t k = b.list_of[i];
-      const LightList lights{b.light_items.data() + b.list_begin[k],
-                             b.list_begin[k + 1] - b.list_begin[k],
-                             b.list_sees.data() + b.list_begin[k]};
-      shade(sc, pr, b.points[i], lights, b, counts);
-      spawn(sc, r.settings(), pr, b.points[i], b);
+      shade_one(pr, b.points[i],
+                LightList{b.light_items.data() + b.list_begin[k],
+                          b.list_begin[k + 1] - b.list_begin[k], b.list_sees.data() + b.list_begin[k]});
     } else {
-      const SurfacePoint s = surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale);
-      shade(sc, pr, s, LightList{nullptr, sc.lights.size()}, b, counts);
-      spawn(sc, r.settings(), pr, s, b);
+      shade_one(pr, surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale),
+                LightList{nullptr, sc.lights.size()});
     }
   }
 }
@@ -473,7 +380,8 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
   b.by_light.resize(m);
   b.light_begin.clear();
   if (sc.lights.size() <= m) {
-    b.light_begin.assign(sc.lights.size() + 1, 0);
+    b.light_begin.clear();
+    b.light_begin.resize(sc.lights.size() + 1);  // zeros
     for (const std::uint32_t i : b.to_trace) ++b.light_begin[b.shadows[i].light + 1];
     for (std::size_t l = 1; l < b.light_begin.size(); ++l)
       b.light_begin[l] += b.light_begin[l - 1];

@@ -57,6 +57,12 @@ int run(const Options& o) {
   if (o.lights >= 0 || o.light_range)
     rt2::set_light_count(scene, o.lights >= 0 ? std::size_t(o.lights) : scene.lights.size(),
                          o.light_range);
+  if (o.environment == "none")
+    scene.environment.reset();
+  else if (o.environment == "sky")
+    scene.environment = rt2::EnvironmentDesc{};
+  else if (!o.environment.empty())
+    scene.environment = rt2::EnvironmentDesc{.image = o.environment};
   scene.validate();
   rt2::recenter_on_camera(scene);  // full float precision where the pixels come from
   const double load_ms = ms_since(t0);
@@ -114,7 +120,7 @@ int run(const Options& o) {
   }
   if (!o.quiet) report.print_summary();
   if (!o.output.empty()) {
-    rt2::write_image(o.output, image);
+    rt2::write_image(o.output, image, o.display);
     if (!o.quiet) std::printf("wrote %s\n", o.output.c_str());
   }
   if (!o.stats.empty()) {

@@ -58,12 +58,14 @@ void check_paths(const Options& o, Given&& given) {
     if (std::filesystem::path(o.stats).extension() != ".json")
       throw rt2::Error("--stats " + o.stats + ": the statistics file must end in .json");
     for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
-                                      {"--reference", &o.reference}})
+                                      {"--reference", &o.reference},
+                                      {"--environment", &o.environment}})
       if (!other->empty() && same_file(o.stats, *other))
         throw rt2::Error("--stats " + o.stats + " is the same file as " + flag + " " + *other);
   }
   if (!o.output.empty())
-    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--reference", &o.reference}})
+    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--reference", &o.reference},
+                                      {"--environment", &o.environment}})
       if (!other->empty() && same_file(o.output, *other))
         throw rt2::Error("--output " + o.output + " is the same file as " + flag + " " + *other);
 }
@@ -121,7 +123,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
               isa = rt2::isa_name(o.isa), packets = "on", positional_scene,
-              light_culling = "clustered", light_lists = "bvh", shadows = "on";
+              light_culling = "clustered", light_lists = "bvh", shadows = "on",
+              tone_curve = "none";
   int light_slices = o.render.light_slices;
   std::string light_range;
   bool version = false;
@@ -179,6 +182,15 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--output", o.output,
                  "image file: .png .jpg .ppm (sRGB, 8-bit) or .exr .hdr .tif (linear float)")
       ->default_str("none");
+  app.add_option("--tonemap", tone_curve, "tone curve of .png .jpg .ppm outputs: none | "
+                                          "reinhard | aces (float formats stay linear)");
+  app.add_option("--exposure", o.display.exposure, "exposure of display outputs, in stops "
+                                                   "(values x 2^stops before the curve)");
+  app.add_option("--environment", o.environment,
+                 "light from far away: an equirectangular HDR image (.hdr .exr), sky "
+                 "(procedural) or none; the background and physically based materials' "
+                 "image-based light")
+      ->default_str("the scene's");
   app.add_option("--stats", o.stats, "write parameters, times and ray counts to FILE.json")
       ->default_str("none");
   app.add_option("--reference", o.reference, "reference image: print RMSE, PSNR, SSIM")
@@ -247,6 +259,12 @@ std::optional<Options> parse_options(int argc, char** argv) {
     throw rt2::Error("unknown --shadows '" + shadows + "' (expected on or off)");
   o.render.shadows = shadows == "on";
   if (given("--light-range")) o.light_range = parse_range_interval(light_range);
+  if (!rt2::parse_tone_curve(tone_curve, o.display.curve))
+    throw rt2::Error("unknown --tonemap '" + tone_curve + "' (expected none, reinhard or aces)");
+  if (!(o.display.exposure >= -64.0f && o.display.exposure <= 64.0f))
+    throw rt2::Error("exposure must be in [-64, 64] stops, got " + std::to_string(o.display.exposure));
+  if (given("--environment") && o.environment.empty())
+    throw rt2::Error("--environment needs a file name, sky or none");
 
   if (split == "sah") o.bvh.split = rt2::Split::sah;
   else if (split == "midpoint") o.bvh.split = rt2::Split::midpoint;

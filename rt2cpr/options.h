@@ -10,6 +10,7 @@
 #include "rt2/render.h"
 #include "rt2/scene.h"
 #include "rt2/schedule.h"
+#include "rt2/tonemap.h"
 
 namespace rt2cpr {
 
@@ -27,6 +28,9 @@ struct Options {
   int frames = 1;
   double time_budget = 0.0;  // seconds per frame for its passes; 0: every pass
   std::string output;  // image file; empty: not written
+  rt2::Display display;  // exposure and tone curve of display outputs (.png ...)
+  // --environment: an HDR image file, "sky" (procedural) or "none"; empty: the scene's.
+  std::string environment;
   std::string stats;   // JSON file; empty: not written
   std::string reference;  // reference image to compare against; empty: none
   bool quiet = false;

@@ -53,6 +53,7 @@ class MtlReader {
       read_illum(values);
     } else if (is_texture(key)) {
       if (key == "map_Kd" && current_) current_->diffuse_texture = true;
+      if (current_ && read_texture(key, values)) return;
       if (current_ && !texture_line_) {
         texture_line_ = line;
         texture_key_ = key;
@@ -63,10 +64,9 @@ class MtlReader {
   // The warnings, once per file.
   void finish() const {
     if (texture_line_)
-      warn(location(file_, texture_line_, 0) + ": textures are not supported; '" +
-           std::string(texture_key_) +
-           "' and every other texture statement of this file are ignored (materials keep their "
-           "colours)");
+      warn(location(file_, texture_line_, 0) + ": '" + std::string(texture_key_) +
+           "' is not supported; it and the other unsupported texture statements of this file "
+           "are ignored (rt2 reads map_Kd, map_Ke, map_Pr, map_Pm and norm)");
     if (spectral_line_)
       warn(location(file_, spectral_line_, 0) +
            ": spectral and CIE XYZ colours are not supported; those of this file are ignored");
@@ -115,6 +115,7 @@ class MtlReader {
       m.has_kd = true;
     }
     if (key == "Ks") std::copy(c, c + 3, m.ks);
+    if (key == "Ke") std::copy(c, c + 3, m.ke);
     if (key == "Kr") {
       m.kr = std::max({c[0], c[1], c[2]});
       m.has_kr = true;
@@ -141,6 +142,32 @@ class MtlReader {
       m.tr = v;
       m.has_tr = true;
     }
+    if (key == "Pr") {
+      m.pr = v;
+      m.has_pr = true;
+    }
+    if (key == "Pm") {
+      m.pm = v;
+      m.has_pm = true;
+    }
+  }
+
+  // A texture statement rt2 uses: `KEY [-option values ...] FILE`. Returns false for the
+  // others. The file is the last token (names with blanks are not supported).
+  bool read_texture(std::string_view key, std::span<const std::string_view> values) {
+    MtlMaterial& m = *current_;
+    std::string* file = key == "map_Kd"   ? &m.map_kd
+                        : key == "map_Ke" ? &m.map_ke
+                        : key == "map_Pr" ? &m.map_pr
+                        : key == "map_Pm" ? &m.map_pm
+                        : key == "norm"   ? &m.norm
+                                          : nullptr;
+    if (!file) return false;
+    if (values.empty()) fail(std::string(key) + " needs a file name");
+    *file = std::string(values.back());
+    for (std::size_t i = 0; i + 2 < values.size(); ++i)
+      if (key == "norm" && values[i] == "-bm") m.norm_scale = number("norm -bm", values[i + 1]);
+    return true;
   }
 
   void read_illum(std::span<const std::string_view> values) {
@@ -169,8 +196,30 @@ void read_mtl(const std::string& file, std::string_view text, MtlMaterials& want
   reader.finish();
 }
 
-Material from_mtl(const MtlMaterial& t) {
+Material from_mtl(const MtlMaterial& t, const AddTexture& texture) {
   Material m;
+  const auto tex = [&](const std::string& file, bool srgb) {
+    return file.empty() || !texture ? kNoTexture : texture(file, srgb);
+  };
+  m.base_color_texture = tex(t.map_kd, true);
+  if (t.is_pbr()) {
+    m.model = Shading::pbr;
+    m.base_color = t.has_kd ? color(t.kd) : vec4(1.0f, 1.0f, 1.0f);
+    m.metallic = clamp01(t.pm);
+    m.roughness = clamp01(t.pr);
+    m.emissive = vec4(std::max(t.ke[0], 0.0f), std::max(t.ke[1], 0.0f), std::max(t.ke[2], 0.0f));
+    m.emissive_texture = tex(t.map_ke, true);
+    m.roughness_texture = tex(t.map_pr, false);
+    m.metallic_texture = tex(t.map_pm, false);
+    m.normal_texture = tex(t.norm, false);
+    m.normal_scale = t.norm_scale;
+    if (t.has_ni && t.ni > 0.0f) m.ior = std::min(t.ni, 100.0f);
+    // d, else 1 - Tr, below 1: the rest is transmitted
+    const float opacity = t.has_d ? clamp01(t.d) : t.has_tr ? clamp01(1.0f - t.tr) : 1.0f;
+    m.transmission = 1.0f - opacity;
+    m.diffuse = m.base_color * (1.0f - m.metallic);
+    return m;
+  }
   m.ambient = color(t.ka);
   m.diffuse = t.has_kd || !t.diffuse_texture ? color(t.kd) : vec4(0.6f, 0.6f, 0.6f);
   m.specular = color(t.ks);

@@ -39,6 +39,15 @@ struct MtlMaterial {
   int illum = 0;
   float kr = 0.0f;  // Kr (an rt2 extension): the largest of its numbers
   bool has_kr = false;
+  // The PBR extension (Exocortex / Blender's exporter): roughness, metallic, emission.
+  float pr = 1.0f, pm = 0.0f;  // Pr, Pm
+  bool has_pr = false, has_pm = false;
+  float ke[3] = {0.0f, 0.0f, 0.0f};  // Ke
+  // Texture files (relative to the MTL file's folder as written; options such as -bm are
+  // read where they matter: norm's -bm is the normal map's scale).
+  std::string map_kd, map_ke, map_pr, map_pm, norm;
+  float norm_scale = 1.0f;
+  bool is_pbr() const { return has_pr || has_pm || !map_pr.empty() || !map_pm.empty(); }
 };
 
 // The materials an OBJ asks for by name (its `usemtl` names), each empty until an MTL library
@@ -52,11 +61,15 @@ using MtlMaterials = std::map<std::string, std::optional<MtlMaterial>, std::less
 // number (got 'red')". `newmtl NAME` takes the rest of the line as the name (blanks trimmed).
 // A material named in `wanted` that has no definition yet gets this one (the first definition
 // wins); the others are checked and dropped. Prints one warning for the file if a material
-// it keeps has a texture (map_Kd, bump, ...: not supported) and one if it has a spectral or
-// CIE XYZ colour (ignored).
+// it keeps has a texture rt2 does not use (bump, refl, map_Ks, ...; map_Kd, map_Ke, map_Pr,
+// map_Pm and norm are kept) and one if it has a spectral or CIE XYZ colour (ignored).
 void read_mtl(const std::string& file, std::string_view text, MtlMaterials& wanted);
 
-// The mapping documented in scenes/FORMAT.md.
-Material from_mtl(const MtlMaterial& t);
+// The mapping documented in scenes/FORMAT.md: a Phong material, or a physically based one
+// when the material has any of Pr, Pm, map_Pr, map_Pm. `texture(file, srgb)` adds a
+// texture file (as written, relative to the MTL's folder) to the scene and returns its index
+// (or kNoTexture to drop it); without it, textures are dropped.
+using AddTexture = std::function<std::uint32_t(const std::string& file, bool srgb)>;
+Material from_mtl(const MtlMaterial& t, const AddTexture& texture = nullptr);
 
 }  // namespace rt2::io

@@ -15,6 +15,7 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <charconv>
 #include <climits>
@@ -250,12 +251,32 @@ class FaceMaterials {
                ? static_cast<int>(fallback())
                : static_cast<int>(
                      scene_.add_material(fs::path(obj_path_).filename().string() + ":" + mtl_name,
-                                         from_mtl(*it->second)));
+                                         from_mtl(*it->second, add_texture(*it->second))));
     }
     return static_cast<std::uint32_t>(id);
   }
 
  private:
+  // Texture files of MTL material `t`, relative to its MTL file's folder: added to the scene
+  // once per file and colour space; a file that is missing or not a regular file is dropped
+  // with a warning (the material keeps its colours, as for a missing MTL library).
+  AddTexture add_texture(const MtlMaterial& t) {
+    return [this, &t](const std::string& file, bool srgb) -> std::uint32_t {
+      const std::string path = (fs::path(t.file).parent_path() / file).string();
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec)) {
+        warn(t.file + ": texture '" + file + "' " +
+             (fs::exists(path, ec) ? "is not a regular file" : "not found") + "; ignored");
+        return kNoTexture;
+      }
+      for (std::size_t i = 0; i < scene_.textures.size(); ++i)
+        if (scene_.textures[i].path == path && scene_.textures[i].srgb == srgb)
+          return static_cast<std::uint32_t>(i);
+      scene_.textures.push_back(TextureDesc{path, {}, srgb});
+      return static_cast<std::uint32_t>(scene_.textures.size() - 1);
+    };
+  }
+
   std::uint32_t fallback() {
     if (default_ < 0) {
       const int m = scene_.find_material("default");
@@ -325,6 +346,28 @@ bool usable_normals(const tinyobj::attrib_t& a, const std::vector<tinyobj::shape
   return true;
 }
 
+// A corner's key: its position, normal + 1 and texture coordinate + 1 (0: none).
+struct CornerHash {
+  std::size_t operator()(const std::array<std::uint32_t, 3>& k) const {
+    std::uint64_t h = (std::uint64_t(k[0]) << 32) ^ (std::uint64_t(k[1]) * 0x9E3779B97F4A7C15ull);
+    h ^= std::uint64_t(k[2]) * 0xC2B2AE3D27D4EB4Full;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+// Texture coordinates need a usable one at every corner; otherwise the mesh has none.
+bool usable_texcoords(const tinyobj::attrib_t& a, const std::vector<tinyobj::shape_t>& shapes) {
+  const std::size_t n = a.texcoords.size() / 2;
+  if (n == 0) return false;
+  for (const auto& shape : shapes)
+    for (const tinyobj::index_t& ix : shape.mesh.indices) {
+      if (ix.texcoord_index < 0 || static_cast<std::size_t>(ix.texcoord_index) >= n) return false;
+      const float* t = &a.texcoords[2 * static_cast<std::size_t>(ix.texcoord_index)];
+      if (!std::isfinite(t[0]) || !std::isfinite(t[1])) return false;
+    }
+  return true;
+}
+
 // Polygons that ear clipping gave up on (rt2/io/polygon_triangulation.h): how many, and the
 // first one's face number and corners.
 struct Fallbacks {
@@ -339,13 +382,16 @@ Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, const O
   const tinyobj::attrib_t& a = reader.GetAttrib();
   const std::size_t nv = a.vertices.size() / 3;
   const bool smooth = usable_normals(a, reader.GetShapes());
+  const bool textured = usable_texcoords(a, reader.GetShapes());
   Mesh mesh;
   mesh.name = path;
-  std::unordered_map<std::uint64_t, std::uint32_t> corners;
+  std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, CornerHash> corners;
   auto corner = [&](const tinyobj::index_t& ix) {
     const auto v = static_cast<std::size_t>(ix.vertex_index);
     const int n = smooth ? ix.normal_index : -1;
-    const std::uint64_t key = (std::uint64_t(v) << 32) | std::uint32_t(n + 1);
+    const int tc = textured ? ix.texcoord_index : -1;
+    const std::array<std::uint32_t, 3> key{static_cast<std::uint32_t>(v), std::uint32_t(n + 1),
+                                           std::uint32_t(tc + 1)};
     const auto [it, added] =
         corners.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
     if (added) {
@@ -354,6 +400,10 @@ Mesh assemble(const std::string& path, const tinyobj::ObjReader& reader, const O
       if (smooth) {
         const float* p = &a.normals[3 * static_cast<std::size_t>(n)];
         mesh.normals.push_back(normalize(vec4(p[0], p[1], p[2])));
+      }
+      if (textured) {
+        const float* t = &a.texcoords[2 * static_cast<std::size_t>(tc)];
+        mesh.texcoords.push_back({t[0], t[1]});
       }
     }
     return it->second;

@@ -432,8 +432,77 @@ void read_world(const Reader& root, Scene& scene) {
   scene.background = w.vector("background", scene.background, kNonNegative);
 }
 
-Material read_material(const Reader& r) {
+// The index in scene.textures of the image file `key` names (relative to `folder`), added
+// once per file and colour space. The file must exist as a regular file; whether it decodes
+// is found when the scene is compiled (texture.h).
+std::uint32_t texture_ref(const Reader& r, Scene& scene, const fs::path& folder,
+                          std::string_view key, bool srgb) {
+  const std::string path = (folder / r.string(key)).string();
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st))
+    r.fail(r.require(key), r.name(key) + ": '" + path + "': no such file");
+  if (!fs::is_regular_file(st))
+    r.fail(r.require(key), r.name(key) + ": '" + path + "' is not a regular file");
+  for (std::size_t i = 0; i < scene.textures.size(); ++i)
+    if (scene.textures[i].path == path && scene.textures[i].srgb == srgb)
+      return static_cast<std::uint32_t>(i);
+  scene.textures.push_back(TextureDesc{path, {}, srgb});
+  return static_cast<std::uint32_t>(scene.textures.size() - 1);
+}
+
+// The keys of each material model (besides `model`).
+const std::initializer_list<std::string_view> kPhongKeys = {
+    "model", "ambient", "diffuse", "specular", "shininess", "reflectivity", "transparency",
+    "ior", "checker", "diffuse_texture"};
+const std::initializer_list<std::string_view> kPbrKeys = {
+    "model", "base_color", "metallic", "roughness", "emissive", "transmission", "ior",
+    "base_color_texture", "metallic_roughness_texture", "normal_texture", "normal_scale",
+    "emissive_texture"};
+
+void read_environment(const Reader& root, Scene& scene, const fs::path& folder) {
+  if (!root.find("environment")) return;
+  const Reader e = root.table("environment", {"image", "intensity", "rotation", "sun_direction"});
+  EnvironmentDesc env;
+  if (e.find("image")) {
+    env.image = (folder / e.string("image")).string();
+    std::error_code ec;
+    if (!fs::is_regular_file(env.image, ec))
+      e.fail(e.require("image"), e.name("image") + ": '" + env.image + "' is not a readable file");
+  }
+  env.intensity = e.number("intensity", env.intensity, kNonNegative);
+  env.rotation_degrees = e.number("rotation", env.rotation_degrees, kAny);
+  env.sun_direction = e.vector("sun_direction", env.sun_direction, kAny);
+  if (!(float(dot(env.sun_direction, env.sun_direction)) > 0.0f))
+    e.fail(e.require("sun_direction"), "environment.sun_direction must not be zero");
+  scene.environment = env;
+}
+
+Material read_pbr_material(const Reader& r, Scene& scene, const fs::path& folder) {
   Material m;
+  m.model = Shading::pbr;
+  m.base_color = r.vector("base_color", m.base_color, kNonNegative);
+  m.metallic = r.number("metallic", m.metallic, kUnit);
+  m.roughness = r.number("roughness", m.roughness, kUnit);
+  m.emissive = r.vector("emissive", m.emissive, kNonNegative);
+  m.transmission = r.number("transmission", m.transmission, kUnit);
+  m.ior = r.number("ior", m.ior, kIor);
+  m.normal_scale = r.number("normal_scale", m.normal_scale, kAny);
+  const auto texture = [&](std::string_view key, bool srgb) {
+    return r.find(key) ? texture_ref(r, scene, folder, key, srgb) : kNoTexture;
+  };
+  m.base_color_texture = texture("base_color_texture", true);
+  m.metallic_roughness_texture = texture("metallic_roughness_texture", false);
+  m.normal_texture = texture("normal_texture", false);
+  m.emissive_texture = texture("emissive_texture", true);
+  m.diffuse = m.base_color * (1.0f - m.metallic);  // what a Phong view of it would show
+  return m;
+}
+
+Material read_material(const Reader& r, Scene& scene, const fs::path& folder) {
+  Material m;
+  if (r.find("diffuse_texture"))
+    m.base_color_texture = texture_ref(r, scene, folder, "diffuse_texture", true);
   m.ambient = r.vector("ambient", m.ambient, kNonNegative);
   m.diffuse = r.vector("diffuse", m.diffuse, kNonNegative);
   m.specular = r.vector("specular", m.specular, kNonNegative);
@@ -449,7 +518,7 @@ Material read_material(const Reader& r) {
   return m;
 }
 
-void read_materials(const Reader& root, Scene& scene) {
+void read_materials(const Reader& root, Scene& scene, const fs::path& folder) {
   const toml::node* n = root.find("materials");
   if (!n) return;
   const toml::table* t = n->as_table();
@@ -461,10 +530,13 @@ void read_materials(const Reader& root, Scene& scene) {
     const toml::table* mt = value.as_table();
     if (!mt)
       root.fail(value, "materials." + name + " must be a table (got " + type_name(value) + ")");
-    const Reader r(root.file(), *mt, "materials." + name,
-                   {"ambient", "diffuse", "specular", "shininess", "reflectivity", "transparency",
-                    "ior", "checker"});
-    scene.add_material(name, read_material(r));
+    const toml::node* model_node = mt->get("model");
+    const bool pbr = model_node && model_node->value<std::string>() == "pbr";
+    const Reader r(root.file(), *mt, "materials." + name, pbr ? kPbrKeys : kPhongKeys);
+    if (model_node && !pbr && r.string("model") != "phong")
+      r.fail(*model_node, r.name("model") + " must be \"phong\" or \"pbr\"");
+    scene.add_material(name, pbr ? read_pbr_material(r, scene, folder)
+                                 : read_material(r, scene, folder));
   }
 }
 
@@ -608,12 +680,13 @@ Scene read_toml_scene(const std::string& path) {
   TomlScreen(path, text).run();
   const toml::table doc = parse_toml(path, text);
   const Reader root(path, doc, "",
-                    {"camera", "world", "materials", "lights", "light_field", "spheres", "planes",
-                     "meshes"});
+                    {"camera", "world", "environment", "materials", "lights", "light_field",
+                     "spheres", "planes", "meshes"});
   Scene scene;
   read_camera(root, scene);
   read_world(root, scene);
-  read_materials(root, scene);  // first, so that objects can name them wherever they are
+  read_environment(root, scene, fs::path(path).parent_path());
+  read_materials(root, scene, fs::path(path).parent_path());  // first, so that objects can name them wherever they are
   read_lights(root, scene);
   read_light_field(root, scene);
   read_spheres(root, scene);

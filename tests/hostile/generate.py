@@ -530,9 +530,11 @@ def mtl_values():
     # highlight of exponent 0 covers the whole lit side in Ks).
     mtl_case("mtl_ns_0_with_ks", "Kd 0.5\nKs 0.9\nNs 0\n",
              "ok: true\nquiet: true\nspecular: 0 0 0 mtl_ns_0_with_ks.obj:m\n")
-    # Textures are not supported: one warning per MTL file, however many there are.
+    # Unsupported texture statements: one warning per MTL file, however many there are; a
+    # texture file that is missing: a warning, and the material keeps its colour.
     mtl_case("mtl_textures", "Kd 0.5\nmap_Kd wood.png\nmap_bump -bm 2 bump.png\nbump b.png\n",
-             "ok: true\nwarning: mtl_textures.mtl:3: textures are not supported; 'map_Kd'\n"
+             "ok: true\nwarning: mtl_textures.mtl:4: 'map_bump' is not supported\n"
+             "warning: texture 'wood.png' not found; ignored\n"
              "diffuse: 0.5 0.5 0.5 mtl_textures.obj:m\n")
 
 

@@ -92,7 +92,8 @@ TEST(Mtl, StatementsThatRt2IgnoresAreAccepted) {
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_FLOAT_EQ(t.d, 0.5f);
   EXPECT_EQ(t.illum, 2);
-  EXPECT_NE(err.find("warning: m.mtl:11: textures are not supported"), std::string::npos) << err;
+  EXPECT_EQ(err.find("map_Kd"), std::string::npos) << err;  // read, not ignored
+  EXPECT_EQ(t.map_kd, "wood.png");
   EXPECT_NE(err.find("warning: m.mtl:9: spectral and CIE XYZ colours are not supported"),
             std::string::npos)
       << err;
@@ -136,8 +137,9 @@ TEST(Mtl, TexturesAreWarnedAboutOncePerFile) {
   read_mtl("m.mtl", "newmtl a\nmap_Kd a.png\nbump a_bump.png\nnewmtl b\nKd 0.2\nmap_Ks b.png\n", m);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(err,
-            "warning: m.mtl:2: textures are not supported; 'map_Kd' and every other texture "
-            "statement of this file are ignored (materials keep their colours)\n");
+            "warning: m.mtl:3: 'bump' is not supported; it and the other unsupported texture "
+            "statements of this file are ignored (rt2 reads map_Kd, map_Ke, map_Pr, map_Pm and "
+            "norm)\n");
   // map_Kd without Kd: tinyobjloader's 0.6 grey, not black.
   expect_rgb(from_mtl(*m.at("a")).diffuse, 0.6f, 0.6f, 0.6f);
   expect_rgb(from_mtl(*m.at("b")).diffuse, 0.2f, 0.2f, 0.2f);

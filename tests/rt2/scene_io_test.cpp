@@ -375,15 +375,38 @@ TEST(SceneIo, UsemtlNamesTheRestOfTheLine) {
   expect_vec(material_named(s, "t.obj:Hard Wood").diffuse, 0.6f, 0.4f, 0.2f);
 }
 
-TEST(SceneIo, MtlTexturesAreOneWarningPerFile) {
+TEST(SceneIo, MtlUnsupportedTexturesAreOneWarningPerFileAndMissingFilesAWarningEach) {
   TempDir dir;
   testing::internal::CaptureStderr();
-  const Scene s = load_with_mtl(dir, "newmtl m\nKd 0.5\nmap_Kd wood.png\nmap_bump b.png\n");
+  const Scene s =
+      load_with_mtl(dir, "newmtl m\nKd 0.5\nmap_Kd wood.png\nmap_bump b.png\nbump c.png\n");
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(err, "warning: " + dir.path("t.mtl") +
-                     ":3: textures are not supported; 'map_Kd' and every other texture "
-                     "statement of this file are ignored (materials keep their colours)\n");
-  expect_vec(material_named(s, "t.obj:m").diffuse, 0.5f, 0.5f, 0.5f);
+                     ":4: 'map_bump' is not supported; it and the other unsupported texture "
+                     "statements of this file are ignored (rt2 reads map_Kd, map_Ke, map_Pr, "
+                     "map_Pm and norm)\nwarning: " +
+                     dir.path("t.mtl") + ": texture 'wood.png' not found; ignored\n");
+  const Material& m = material_named(s, "t.obj:m");
+  expect_vec(m.diffuse, 0.5f, 0.5f, 0.5f);
+  EXPECT_EQ(m.base_color_texture, kNoTexture);
+  EXPECT_TRUE(s.textures.empty());
+}
+
+TEST(SceneIo, MtlTextureFilesAreAddedOncePerFileAndColourSpace) {
+  TempDir dir;
+  dir.write("wood.png", "not decoded before the scene is compiled");
+  const Scene s = load_with_mtl(dir,
+                                "newmtl m\nKd 0.5\nPr 0.3\nmap_Kd wood.png\nmap_Ke wood.png\n"
+                                "map_Pr wood.png\n");
+  ASSERT_EQ(s.textures.size(), 2u);
+  const Material& m = material_named(s, "t.obj:m");
+  EXPECT_EQ(m.model, Shading::pbr);
+  EXPECT_EQ(m.base_color_texture, 0u);
+  EXPECT_EQ(m.emissive_texture, 0u);
+  EXPECT_EQ(m.roughness_texture, 1u);
+  EXPECT_EQ(s.textures[0].path, dir.path("wood.png"));
+  EXPECT_TRUE(s.textures[0].srgb);
+  EXPECT_FALSE(s.textures[1].srgb);  // roughness is data, not a colour
 }
 
 TEST(SceneIo, MissingMtlLibraryIsOneWarningLineNotAnError) {

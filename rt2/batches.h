@@ -1,0 +1,201 @@
+// rt2/batches.h — the data the render kernel's stages pass along (tracer.h): rays of the
+// ray tree, their hits' surface points, the shadow rays and light lists of a batch.
+//
+// Compiled per instruction set like the kernel (the code lives in rt2::RT2_ISA).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "rt2/accel.h"
+#include "rt2/cluster_visibility.h"
+#include "rt2/offset.h"
+#include "rt2/ray.h"
+
+namespace rt2::RT2_ISA {
+namespace detail {
+
+// A ray of the ray tree, and whose sample it adds to.
+struct PathRay {
+  Ray ray;
+  // The product of the reflection / transmission factors along the path: Kr and Kt (the
+  // same in every lane) for Phong, the Fresnel-weighted colours of physically based ones.
+  vec4 weight;
+  std::uint32_t sample;  // index into the block's sample colours
+  int depth;
+  float travelled;       // the path's length from the camera to this ray's origin
+  RayKind kind;
+};
+
+// Whether a ray of weight w is worth tracing: its largest channel exceeds `min_weight`.
+MLIB_INLINE bool heavy_enough(const vec4& w, float min_weight) {
+  return std::max(std::max(w[0], w[1]), w[2]) > min_weight;
+}
+
+// A shadow ray, with the light's unshadowed term at the point it leaves.
+struct ShadowRay {
+  Ray ray;
+  vec4 term;  // weight x (Kd (L·N) + Ks (R·V)^n) x light radiance
+  float distance;
+  std::uint32_t sample;
+  std::uint32_t light;  // index into CompiledScene::lights
+  bool unoccluded;      // proven to pass whole (cluster_visibility.h): not traced
+};
+
+// What shading needs to know about a hit.
+struct SurfacePoint {
+  vec4 p;                   // on the surface, computed precisely (see offset.h)
+  vec4 ng;                  // unit geometric normal, on the side the ray came from
+  vec4 ns;                  // unit shading normal, same side
+  vec4 above;               // p moved off the surface along ng: where shadow and reflected
+                            // rays start (offset.h)
+  bool entering;            // the ray hit the outside (against the outward normal)
+  std::uint32_t material;
+  // The hit itself, for what only some materials need (texture coordinates: texcoords_at).
+  PrimRef prim;
+  float t, u, v;
+};
+
+// The lights a shading point considers: CompiledScene::lights[index[k]] for k < count, or
+// every light (index null, count = all).
+struct LightList {
+  const std::uint32_t* index = nullptr;
+  std::size_t count = 0;
+  // Per light of the list, whether every shadow ray from the list's cluster to it provably
+  // meets nothing (cluster_visibility.h); null: nothing proven.
+  const std::uint8_t* sees = nullptr;
+  std::uint32_t operator[](std::size_t k) const {
+    return index ? index[k] : static_cast<std::uint32_t>(k);
+  }
+};
+
+// A shadow ray's light and its index in the batch, for grouping the batch by light.
+struct LightRay {
+  std::uint32_t light, ray;
+};
+
+// The batches of one thread, reused from block to block (no allocation once grown).
+struct Batches {
+  std::vector<PathRay> rays, next;
+  std::vector<std::uint32_t> packet_begin;  // the primary batch's packets (generate)
+  std::vector<Hit> hits;                    // per ray of `rays`
+  std::vector<SurfacePoint> points;         // per ray of `rays` that hit
+  // Light lists: list k is light_items[list_begin[k], list_begin[k + 1]); the hit of ray
+  // i uses list list_of[i]. No lists: every hit considers every light.
+  std::vector<std::uint32_t> light_items, list_begin, list_of;
+  std::vector<std::uint8_t> list_sees;  // parallel to light_items (see LightList::sees)
+  ClusterVisibility visibility;
+  std::vector<std::uint32_t> to_trace;  // the shadow rays to trace
+  std::vector<std::uint32_t> found;     // one query's answer
+  std::vector<float> depth;             // clustered culling: per ray, its hit's depth
+  std::vector<Aabb> cluster_bounds;     // clustered culling: per slice
+  std::vector<ShadowRay> shadows;
+  std::vector<float> passed;              // per shadow ray: the light that passes
+  std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
+  std::vector<std::uint32_t> light_begin;
+  std::vector<LightRay> light_rays;
+  std::vector<vec4> colors;
+};
+
+inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
+                               float offset_scale) {
+  SurfacePoint s;
+  const std::uint32_t i = prim_index(h.prim);
+  if (prim_tag(h.prim) == kTriangleTag) {
+    const Triangle& tri = acc.tris[i];
+    s.p = tri.point(h.u, h.v);  // from barycentrics: precise, see offset.h
+    s.ng = normalize(tri.n);
+    if (acc.tri_normals.empty()) {
+      s.ns = s.ng;
+    } else {
+      const auto& n = acc.tri_normals[i];
+      s.ns = normalize((1.0f - h.u - h.v) * n[0] + h.u * n[1] + h.v * n[2]);
+    }
+  } else if (prim_tag(h.prim) == kSphereTag) {
+    const Sphere& sp = acc.spheres[i];
+    s.ng = sphere_normal(sp, ray.at(h.t));
+    s.p = sp.center + s.ng * sp.radius;  // re-projected onto the surface
+    s.ns = s.ng;
+  } else {
+    const Plane& pl = acc.planes[i];
+    const vec4 q = ray.at(h.t);
+    s.p = q - pl.n * (float(dot(q, pl.n)) + pl.d);  // projected onto the plane
+    s.ng = s.ns = pl.n;
+  }
+  s.material = acc.material_of(h.prim);
+  s.prim = h.prim;
+  s.t = h.t;
+  s.u = h.u;
+  s.v = h.v;
+  s.entering = dot(ray.dir, s.ng) < 0.0f;
+  if (!s.entering) {
+    s.ng = -s.ng;
+    s.ns = -s.ns;
+  }
+  if (!(dot(s.ns, ray.dir) < 0.0f)) s.ns = s.ng;  // an interpolated normal facing away
+  s.above = offset_ray_origin(s.p, s.ng, offset_scale);
+  return s;
+}
+
+// Appends a child of `parent`, starting `travelled` from the camera, to the next batch,
+// field by field (a whole temporary copied in would be read back as one wide load from
+// narrower stores: a store-forwarding stall).
+MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, const vec4& weight,
+                               const PathRay& parent, RayKind kind, float travelled) {
+  PathRay& pr = b.next.emplace_back();
+  pr.ray.org = org;
+  pr.ray.dir = dir;
+  pr.weight = weight;
+  pr.sample = parent.sample;
+  pr.depth = parent.depth + 1;
+  pr.travelled = travelled;
+  pr.kind = kind;
+}
+
+// The texture coordinates (u, v) at a surface point, and how many texture units one world
+// unit spans there (for the footprint of a lookup): triangles interpolate their vertices'
+// (0 without), spheres map longitude to u and latitude to v (v = 1 at the top, +y), planes
+// take their point's coordinates along two axes in the plane.
+struct TexturePoint {
+  float u = 0.0f, v = 0.0f;
+  float per_world = 0.0f;
+};
+
+inline TexturePoint texcoords_at(const Accel& acc, const SurfacePoint& s) {
+  TexturePoint tp;
+  const std::uint32_t i = prim_index(s.prim);
+  if (prim_tag(s.prim) == kTriangleTag) {
+    if (acc.tri_texcoords.empty()) return tp;
+    const auto& c = acc.tri_texcoords[i];
+    const float w = 1.0f - s.u - s.v;
+    tp.u = w * c[0][0] + s.u * c[1][0] + s.v * c[2][0];
+    tp.v = w * c[0][1] + s.u * c[1][1] + s.v * c[2][1];
+    // sqrt(texture area / world area) of the triangle
+    const float uv_area = std::fabs((c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
+                                    (c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
+    const float world_area = std::sqrt(float(dot(acc.tris[i].n, acc.tris[i].n)));
+    tp.per_world = world_area > 0.0f ? std::sqrt(uv_area / world_area) : 0.0f;
+  } else if (prim_tag(s.prim) == kSphereTag) {
+    const Sphere& sp = acc.spheres[i];
+    const vec4 n = (s.p - sp.center) / sp.radius;
+    tp.u = 0.5f + std::atan2(float(n[0]), float(n[2])) * (0.5f / std::numbers::pi_v<float>);
+    tp.v = 1.0f - std::acos(std::clamp(float(n[1]), -1.0f, 1.0f)) / std::numbers::pi_v<float>;
+    tp.per_world = 1.0f / (std::numbers::pi_v<float> * sp.radius);
+  } else {
+    const Plane& pl = acc.planes[i];
+    // two axes in the plane: the world axis least aligned with n, made orthogonal
+    const vec4 a = std::fabs(float(pl.n[1])) < 0.9f ? vec4(0, 1, 0) : vec4(1, 0, 0);
+    const vec4 x = normalize(cross(a, pl.n));
+    const vec4 y = cross(pl.n, x);
+    tp.u = dot(s.p, x);
+    tp.v = dot(s.p, y);
+    tp.per_world = 1.0f;
+  }
+  return tp;
+}
+
+}  // namespace detail
+}  // namespace rt2::RT2_ISA
