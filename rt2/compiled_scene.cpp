@@ -1,22 +1,40 @@
 // rt2/compiled_scene.cpp — compiling a Scene (see compiled_scene.h).
 #include "rt2/compiled_scene.h"
 
+#include <chrono>
 #include <utility>
 
+#include "rt2/brdf_lut.h"
 #include "rt2/image_io.h"
 
 namespace rt2 {
 
 CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config, Isa isa) {
   scene.validate();
+  using Clock = std::chrono::steady_clock;
+  const auto ms_since = [](Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  };
   CompiledScene c;
+  Clock::time_point t = Clock::now();
   c.accel = Accel::build(scene, config, isa);
+  c.times.accel_ms = ms_since(t);
   c.materials = scene.materials;
   // Shadow rays pass physically based materials by their transmission (query.h reads
   // `transparency`; the pbr shading step never does).
+  bool pbr = false;
   for (Material& m : c.materials)
-    if (m.model == Shading::pbr) m.transparency = m.transmission * (1.0f - m.metallic);
+    if (m.model == Shading::pbr) {
+      m.transparency = m.transmission * (1.0f - m.metallic);
+      pbr = true;
+    }
+  t = Clock::now();
+  if (pbr) split_sum(0.5f, 0.5f);  // the table is made here, not in the first frame
+  c.times.brdf_table_ms = ms_since(t);
+  t = Clock::now();
   c.textures = TextureSet(scene.textures);
+  c.times.textures_ms = ms_since(t);
+  t = Clock::now();
   if (scene.environment) {
     const EnvironmentDesc& e = *scene.environment;
     if (e.image.empty()) {
@@ -30,6 +48,7 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
   } else {
     c.environment = Environment::uniform(scene.ambient);
   }
+  c.times.environment_ms = ms_since(t);
   c.lights = scene.lights;
   c.ambient = scene.ambient;
   c.background = scene.background;

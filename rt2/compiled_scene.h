@@ -42,6 +42,13 @@ struct CompiledScene {
   float offset_scale = 1.0f;  // the scene's size, for secondary-ray origins (offset.h)
   unsigned features = 0;      // features.h, for reports
 
+  // What compiling took, for reports (ms): the trees, the BRDF table (brdf_lut.h; made
+  // once per process, 0 without physically based materials or when made before), opening
+  // the textures, and loading and prefiltering the environment.
+  struct Times {
+    double accel_ms = 0, brdf_table_ms = 0, textures_ms = 0, environment_ms = 0;
+  } times;
+
   // Validates `scene` (Scene::validate) and compiles it: the trees with `config`, the
   // triangles' `bvh_width(isa)` wide; opens its textures and loads and prefilters its
   // environment (throws rt2::Error "FILE: reason" when one cannot be read).

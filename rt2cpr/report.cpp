@@ -118,7 +118,8 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
       {"planes", accel.planes.size()},
       {"degenerate_triangles", scene.degenerate_triangles},
       {"scene_load_ms", load_ms},
-      {"bvh_build_ms", build_ms},
+      {"bvh_build_ms", compiled.times.accel_ms},
+      {"compile_ms", build_ms},
       {"bvh_width", rt2::bvh_width(accel.isa)},
       {"bvh_nodes", accel.wide_nodes},
       {"bvh_leaves", b.leaves},
@@ -132,6 +133,19 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
       {"cpu", rt2::cpu_model()},
       {"date", utc_now()},
   };
+  std::size_t pbr = 0;
+  for (const rt2::Material& m : compiled.materials) pbr += m.model == rt2::Shading::pbr;
+  j_["materials"] = compiled.materials.size();
+  j_["materials_pbr"] = pbr;
+  j_["textures"] = compiled.textures.size();
+  j_["environment"] = !scene.environment ? "none"
+                      : scene.environment->image.empty() ? "sky"
+                                                         : scene.environment->image;
+  j_["environment_ms"] = compiled.times.environment_ms;
+  j_["brdf_table_ms"] = compiled.times.brdf_table_ms;
+  j_["textures_ms"] = compiled.times.textures_ms;
+  j_["tonemap"] = rt2::tone_curve_name(o.display.curve);
+  j_["exposure"] = json_float(o.display.exposure);
 }
 
 void Report::add_frame(const rt2::FrameResult& r, int passes) {
@@ -161,6 +175,14 @@ void Report::print_setup() const {
               j_["spheres"].get<std::size_t>(), j_["planes"].get<std::size_t>(),
               j_["lights"].get<std::size_t>(), j_["features"].get<std::string>().c_str(),
               j_["scene_load_ms"].get<double>());
+  if (j_["materials_pbr"].get<std::size_t>() > 0 || j_["environment"] != "none" ||
+      j_["textures"].get<std::size_t>() > 0)
+    std::printf("materials: %zu, %zu physically based (BRDF table %.1f ms); %zu textures "
+                "(opened in %.1f ms); environment %s (loaded and prefiltered in %.1f ms)\n",
+                j_["materials"].get<std::size_t>(), j_["materials_pbr"].get<std::size_t>(),
+                j_["brdf_table_ms"].get<double>(), j_["textures"].get<std::size_t>(),
+                j_["textures_ms"].get<double>(), j_["environment"].get<std::string>().c_str(),
+                j_["environment_ms"].get<double>());
   if (j_["degenerate_triangles"].get<std::size_t>() > 0)
     std::printf("dropped %zu degenerate triangles\n", j_["degenerate_triangles"].get<std::size_t>());
   std::printf("bvh %s, leaf size %u, %d-wide: %u nodes, %u leaves, depth %u, %.1f MB, built in "
