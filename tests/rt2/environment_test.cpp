@@ -63,6 +63,24 @@ void expect_constant(const Environment& env, const vec4& color, float tolerance)
   }
 }
 
+// The polynomial atan2 and acos of the lookups against libm's, over their whole domains
+// (every quadrant, the axes, signed zeros, |x| = 1).
+TEST(Equirect, FastAtan2AndAcosMatchLibmWithin2e6Radians) {
+  for (int i = -400; i <= 400; ++i) {
+    const float x = float(i) / 400.0f;
+    EXPECT_NEAR(fast_acos(x), std::acos(x), 1e-6f) << x;
+    for (int j = -40; j <= 40; ++j) {
+      const float y = float(j) / 37.0f;
+      EXPECT_NEAR(fast_atan2(y, x), std::atan2(y, x), 2e-6f) << y << ", " << x;
+      EXPECT_NEAR(fast_atan2(1e-30f * y, 1e-30f * x), std::atan2(1e-30f * y, 1e-30f * x),
+                  2e-6f);
+    }
+  }
+  EXPECT_EQ(fast_atan2(0.0f, 0.0f), 0.0f);
+  EXPECT_NEAR(fast_atan2(0.0f, -1.0f), std::numbers::pi_v<float>, 1e-6f);
+  EXPECT_NEAR(fast_atan2(-1.0f, 0.0f), -0.5f * std::numbers::pi_v<float>, 1e-6f);
+}
+
 TEST(Equirect, DirectionUvRoundTrip) {
   for (const vec4& d : sphere_directions(500)) {
     const vec4 back = uv_to_direction(direction_to_uv(d));
