@@ -107,7 +107,8 @@ tinygltf::Model parse_model(const std::string& path) {
   const std::string base = folder.prefix;
   if (!folder.prefix.ends_with('/')) folder.prefix += '/';
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &refuse_write, &folder});
+  loader.SetFsCallbacks(
+      {&file_exists, &expand_file_path, &read_whole_file, &refuse_write, &folder});
   loader.SetImageLoader(&keep_undecoded, nullptr);
   tinygltf::Model model;
   std::string err, warn;
@@ -233,8 +234,7 @@ struct Accessor {
         std::memcpy(&f, p, 4);
         return f;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
         std::uint16_t u;
         std::memcpy(&u, p, 2);
@@ -245,8 +245,7 @@ struct Accessor {
         std::memcpy(&u, p, 4);
         return u;
       }
-      default:
-        return 0;
+      default: return 0;
     }
   }
 };
@@ -254,17 +253,13 @@ struct Accessor {
 std::size_t component_size(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
     case TINYGLTF_COMPONENT_TYPE_INT:
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return 4;
-    default:
-      return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
   }
 }
 
@@ -320,11 +315,11 @@ class GltfReader {
   std::string path_;
   tinygltf::Model model_;
   Scene scene_;
-  std::vector<int> material_of_;           // glTF material -> scene material, or -1
+  std::vector<int> material_of_;  // glTF material -> scene material, or -1
   int default_material_ = -1;
   std::map<std::pair<int, bool>, std::uint32_t> textures_;  // (image, srgb) -> scene texture
-  std::vector<char> on_path_;              // nodes on the current walk (cycle check)
-  std::size_t visits_ = 0, vertices_ = 0;
+  std::vector<char> on_path_;  // nodes on the current walk (cycle check)
+  std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0;
   bool have_camera_ = false;
   std::vector<std::string> warned_;
   // Lights wait for the scene's bounds (their intensity is scaled at its centre).
@@ -352,13 +347,13 @@ std::string_view GltfReader::view_bytes(int index, std::size_t offset, std::size
          std::to_string(v.buffer) + ", which does not exist");
   const std::vector<unsigned char>& b = model_.buffers[std::size_t(v.buffer)].data;
   if (v.byteOffset > b.size() || v.byteLength > b.size() - v.byteOffset)
-    fail(what + ": bufferView " + std::to_string(index) + " (bytes " + std::to_string(v.byteOffset) +
-         " + " + std::to_string(v.byteLength) + ") lies beyond its buffer of " +
-         std::to_string(b.size()) + " bytes");
+    fail(what + ": bufferView " + std::to_string(index) + " (bytes " +
+         std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) +
+         ") lies beyond its buffer of " + std::to_string(b.size()) + " bytes");
   if (offset > v.byteLength || length > v.byteLength - offset)
     fail(what + ": bytes " + std::to_string(offset) + " + " + std::to_string(length) +
-         " lie beyond bufferView " + std::to_string(index) + " of " +
-         std::to_string(v.byteLength) + " bytes");
+         " lie beyond bufferView " + std::to_string(index) + " of " + std::to_string(v.byteLength) +
+         " bytes");
   return {reinterpret_cast<const char*>(b.data()) + v.byteOffset + offset, length};
 }
 
@@ -377,19 +372,20 @@ Accessor GltfReader::accessor(int index, const std::string& what, std::initializ
   r.count = a.count;
   if (std::find(types.begin(), types.end(), a.componentType) == types.end()) {
     std::string expected;
-    for (const int t : types) expected += std::string(expected.empty() ? "" : " or ") + component_name(t);
+    for (const int t : types)
+      expected += std::string(expected.empty() ? "" : " or ") + component_name(t);
     fail(at + ": components are " + component_name(a.componentType) + ", expected " + expected);
   }
   if (r.components != components)
-    fail(at + ": has " + (r.components ? std::to_string(r.components) : "an unsupported number of") +
+    fail(at + ": has " +
+         (r.components ? std::to_string(r.components) : "an unsupported number of") +
          " components per element, expected " + std::to_string(components));
   if (a.bufferView < 0) fail(at + ": has no bufferView (all zeros), which rt2 does not read");
   if (r.count == 0) return r;
   const std::size_t element = r.component_size * std::size_t(r.components);
-  const std::size_t view_stride =
-      std::size_t(a.bufferView) < model_.bufferViews.size()
-          ? model_.bufferViews[std::size_t(a.bufferView)].byteStride
-          : 0;
+  const std::size_t view_stride = std::size_t(a.bufferView) < model_.bufferViews.size()
+                                      ? model_.bufferViews[std::size_t(a.bufferView)].byteStride
+                                      : 0;
   r.stride = view_stride ? view_stride : element;
   if (r.stride < element)
     fail(at + ": byteStride " + std::to_string(r.stride) + " is less than its element of " +
@@ -435,7 +431,7 @@ std::uint32_t GltfReader::texture(int index, bool srgb, int tex_coord, const std
     const fs::path p = fs::path(path_).parent_path() / file;
     std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
-    const std::string why = st.type() == fs::file_type::not_found ? "No such file or directory"
+    const std::string why = st.type() == fs::file_type::not_found   ? "No such file or directory"
                             : st.type() == fs::file_type::directory ? "is a directory"
                             : st.type() != fs::file_type::regular   ? "is not a regular file"
                                                                     : "";
@@ -468,7 +464,8 @@ std::uint32_t GltfReader::material(int index) {
       m.model = Shading::pbr;
       m.metallic = 1.0f;
       m.diffuse = m.base_color;
-      default_material_ = int(scene_.add_material(fs::path(path_).filename().string() + ":default", m));
+      default_material_ =
+          int(scene_.add_material(fs::path(path_).filename().string() + ":default", m));
     }
     return std::uint32_t(default_material_);
   }
@@ -481,7 +478,9 @@ std::uint32_t GltfReader::material(int index) {
   const std::string at = "material " + named(index, g.name);
   const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
   const auto colour = [&](const std::vector<double>& v, std::size_t n, const char* field) {
-    if (v.size() != n) fail(at + ": " + field + " has " + std::to_string(v.size()) + " numbers, expected " + std::to_string(n));
+    if (v.size() != n)
+      fail(at + ": " + field + " has " + std::to_string(v.size()) + " numbers, expected " +
+           std::to_string(n));
     for (const double x : v)
       if (!(x >= 0 && x <= 1e6)) fail(at + ": " + field + " holds " + fmt(x) + ", expected >= 0");
     return vec4(float(v[0]), float(v[1]), float(v[2]));
@@ -499,17 +498,18 @@ std::uint32_t GltfReader::material(int index) {
       ext_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0);
   if (!(strength >= 0 && strength <= 1e6)) fail(at + ": emissiveStrength is " + fmt(strength));
   m.emissive = colour(g.emissiveFactor, 3, "emissiveFactor") * float(strength);
-  m.transmission = unit(ext_number(g.extensions, "KHR_materials_transmission",
-                                   "transmissionFactor", 0.0),
-                        "transmissionFactor");
+  m.transmission =
+      unit(ext_number(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0),
+           "transmissionFactor");
   const double ior = ext_number(g.extensions, "KHR_materials_ior", "ior", 1.5);
   if (!(ior >= 1 && ior <= 100)) fail(at + ": ior is " + fmt(ior) + ", expected 1..100");
   m.ior = float(ior);
   m.normal_scale = float(g.normalTexture.scale);
   if (!std::isfinite(m.normal_scale)) fail(at + ": normalTexture.scale is not finite");
-  m.base_color_texture = texture(pbr.baseColorTexture.index, true, pbr.baseColorTexture.texCoord, at);
-  m.metallic_roughness_texture = texture(pbr.metallicRoughnessTexture.index, false,
-                                         pbr.metallicRoughnessTexture.texCoord, at);
+  m.base_color_texture =
+      texture(pbr.baseColorTexture.index, true, pbr.baseColorTexture.texCoord, at);
+  m.metallic_roughness_texture =
+      texture(pbr.metallicRoughnessTexture.index, false, pbr.metallicRoughnessTexture.texCoord, at);
   m.normal_texture = texture(g.normalTexture.index, false, g.normalTexture.texCoord, at);
   m.emissive_texture = texture(g.emissiveTexture.index, true, g.emissiveTexture.texCoord, at);
   // Phong fields, for renderers of Shading::phong: the base colour diffuse, a highlight as
@@ -531,8 +531,9 @@ std::uint32_t GltfReader::material(int index) {
 Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
   const auto check = [&](const std::vector<double>& v, std::size_t size, const char* field) {
     if (!v.empty() && v.size() != size)
-      error_at(at, 0, 0, std::string(field) + " has " + std::to_string(v.size()) +
-                             " numbers, expected " + std::to_string(size));
+      error_at(at, 0, 0,
+               std::string(field) + " has " + std::to_string(v.size()) + " numbers, expected " +
+                   std::to_string(size));
     for (const double x : v)
       if (!std::isfinite(x)) error_at(at, 0, 0, std::string(field) + " holds " + fmt(x));
   };
@@ -552,10 +553,12 @@ Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
     const double len = std::sqrt(x * x + y * y + z * z + w * w);
     if (!(len > 0)) error_at(at, 0, 0, "rotation is a zero quaternion");
     x /= len, y /= len, z /= len, w /= len;
+    // clang-format off
     r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),     0,
          2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),     0,
          2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y), 0,
          0,                       0,                       0,                       1};
+    // clang-format on
   }
   if (!n.scale.empty()) s[0] = n.scale[0], s[5] = n.scale[1], s[10] = n.scale[2];
   return t * r * s;
@@ -563,14 +566,16 @@ Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
 
 void GltfReader::walk(int node, const Mat4& parent, int depth) {
   if (node < 0 || std::size_t(node) >= model_.nodes.size())
-    fail("node " + std::to_string(node) + " does not exist (" + std::to_string(model_.nodes.size()) +
-         " nodes)");
+    fail("node " + std::to_string(node) + " does not exist (" +
+         std::to_string(model_.nodes.size()) + " nodes)");
   const tinygltf::Node& n = model_.nodes[std::size_t(node)];
   const std::string at = "node " + named(node, n.name);
   if (on_path_[std::size_t(node)]) fail(at + " is its own descendant (a cycle)");
-  if (depth > kMaxGltfDepth) fail(at + " is nested more than " + std::to_string(kMaxGltfDepth) + " deep");
+  if (depth > kMaxGltfDepth)
+    fail(at + " is nested more than " + std::to_string(kMaxGltfDepth) + " deep");
   if (++visits_ > kMaxGltfNodeVisits)
-    fail("more than " + std::to_string(kMaxGltfNodeVisits) + " node instances (nodes shared by many parents)");
+    fail("more than " + std::to_string(kMaxGltfNodeVisits) +
+         " node instances (nodes shared by many parents)");
   const Mat4 world = parent * local_matrix(n, path_ + ": " + at);
   if (n.camera >= 0 && !have_camera_) set_camera(node, n.camera, world);
   if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
@@ -591,7 +596,8 @@ void GltfReader::walk(int node, const Mat4& parent, int depth) {
 void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world) {
   const tinygltf::Mesh& gm = model_.meshes[std::size_t(mesh_index)];
   const tinygltf::Primitive& prim = gm.primitives[std::size_t(prim_index)];
-  const std::string at = "mesh " + named(mesh_index, gm.name) + " primitive " + std::to_string(prim_index);
+  const std::string at =
+      "mesh " + named(mesh_index, gm.name) + " primitive " + std::to_string(prim_index);
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -603,6 +609,9 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     const auto it = prim.attributes.find(name);
     return it == prim.attributes.end() ? -1 : it->second;
   };
+  if (++primitives_ > kMaxGltfPrimitives)
+    fail("more than " + std::to_string(kMaxGltfPrimitives) +
+         " primitive instances (meshes of nodes shared by many parents?)");
   const int pos_index = attribute("POSITION");
   if (pos_index < 0) fail(at + ": has no POSITION attribute");
   const Accessor pos = accessor(pos_index, at + " POSITION", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
@@ -616,9 +625,9 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   for (std::size_t i = 0; i < pos.count; ++i) {
     const Vec3d p = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
     if (!fits_float(p))
-      fail(at + ": POSITION " + std::to_string(i) + " is not a finite float (" + fmt(pos.get(i, 0)) + " " +
-           fmt(pos.get(i, 1)) + " " + fmt(pos.get(i, 2)) + " in the world: " + fmt(p.x) + " " +
-           fmt(p.y) + " " + fmt(p.z) + ")");
+      fail(at + ": POSITION " + std::to_string(i) + " is not a finite float (" +
+           fmt(pos.get(i, 0)) + " " + fmt(pos.get(i, 1)) + " " + fmt(pos.get(i, 2)) +
+           " in the world: " + fmt(p.x) + " " + fmt(p.y) + " " + fmt(p.z) + ")");
     mesh.positions.push_back(to_vec4(p));
   }
   const double det = determinant3(world);
@@ -662,11 +671,11 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   // Corner indices: the indices accessor, or 0, 1, 2, ... without one.
   std::vector<std::uint32_t> corners;
   if (prim.indices >= 0) {
-    const Accessor idx = accessor(prim.indices, at + " indices",
-                                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-                                  1);
+    const Accessor idx =
+        accessor(prim.indices, at + " indices",
+                 {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                 1);
     corners.reserve(idx.count);
     for (std::size_t i = 0; i < idx.count; ++i) {
       const double v = idx.get(i, 0);
@@ -686,7 +695,9 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   };
   const std::size_t n = corners.size();
   if (mode == TINYGLTF_MODE_TRIANGLES) {
-    if (n % 3 != 0) warn_once("leftover", at + ": " + std::to_string(n) + " corners is not a multiple of 3; the last are ignored");
+    if (n % 3 != 0)
+      warn_once("leftover", at + ": " + std::to_string(n) +
+                                " corners is not a multiple of 3; the last are ignored");
     for (std::size_t i = 0; i + 2 < n; i += 3) add(corners[i], corners[i + 1], corners[i + 2]);
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
     for (std::size_t i = 0; i + 2 < n; ++i)
@@ -756,7 +767,8 @@ void GltfReader::finish_lights() {
     const std::string at = "light " + named(p.index, g.name);
     Light l;
     if (!g.color.empty()) {
-      if (g.color.size() != 3) fail(at + ": color has " + std::to_string(g.color.size()) + " numbers, expected 3");
+      if (g.color.size() != 3)
+        fail(at + ": color has " + std::to_string(g.color.size()) + " numbers, expected 3");
       for (const double c : g.color)
         if (!(c >= 0 && c <= 1e6)) fail(at + ": color holds " + fmt(c) + ", expected >= 0");
       l.color = vec4(float(g.color[0]), float(g.color[1]), float(g.color[2]));
@@ -770,8 +782,10 @@ void GltfReader::finish_lights() {
       l.position = frame.center - to_vec4(p.direction) * far;
       l.intensity = float(g.intensity);
     } else {
-      if (g.type == "spot") warn_once("spot", at + " is a spot light; rendered as a point light");
-      else if (g.type != "point") fail(at + ": unknown type '" + one_line(g.type) + "'");
+      if (g.type == "spot")
+        warn_once("spot", at + " is a spot light; rendered as a point light");
+      else if (g.type != "point")
+        fail(at + ": unknown type '" + one_line(g.type) + "'");
       l.position = to_vec4(p.position);
       const vec4 to_center = frame.center - l.position;
       const float d = std::max(std::sqrt(float(dot(to_center, to_center))), frame.radius);
@@ -790,8 +804,8 @@ Scene GltfReader::read() {
   if (!model_.scenes.empty()) {
     const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (std::size_t(s) >= model_.scenes.size())
-      fail("scene " + std::to_string(s) + " does not exist (" + std::to_string(model_.scenes.size()) +
-           " scenes)");
+      fail("scene " + std::to_string(s) + " does not exist (" +
+           std::to_string(model_.scenes.size()) + " scenes)");
     roots = model_.scenes[std::size_t(s)].nodes;
   } else {  // no scenes: every node that is no node's child
     std::vector<char> child(model_.nodes.size(), 0);
@@ -804,9 +818,9 @@ Scene GltfReader::read() {
   for (const int r : roots) walk(r, kIdentity, 0);
   if (!model_.animations.empty()) warn_once("anim", "animations are ignored");
   if (scene_.meshes.empty())
-    fail(scene_.degenerate_triangles ? "all " + std::to_string(scene_.degenerate_triangles) +
-                                           " triangles are degenerate"
-                                     : "no triangles in the scene");
+    fail(scene_.degenerate_triangles
+             ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"
+             : "no triangles in the scene");
   const Framing frame = framing_of(path_, scene_.bounds(), "scene");
   if (!have_camera_) scene_.camera = framing_camera(frame);
   finish_lights();

@@ -17,7 +17,8 @@ namespace rt2::io {
 // Limits beyond which input is a mistake, not a scene.
 constexpr std::size_t kMaxGltfBytes = 2047ull << 20;  // a .gltf, .glb or buffer file
 constexpr int kMaxGltfDepth = 1024;                   // node hierarchy depth
-constexpr std::size_t kMaxGltfNodeVisits = 1u << 20;  // node instances (a DAG can repeat)
+constexpr std::size_t kMaxGltfNodeVisits = 1u << 18;  // node instances (a DAG can repeat)
+constexpr std::size_t kMaxGltfPrimitives = 1u << 16;  // primitive instances (one Mesh each)
 constexpr std::size_t kMaxGltfVertices = 1u << 26;    // all mesh instances together
 
 // Reads the glTF 2.0 file `path` (JSON or binary, told apart by its first bytes, "glTF"

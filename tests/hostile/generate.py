@@ -726,9 +726,12 @@ def gltf():
           gltf=gltf_text(nodes=[{"mesh": 0, "children": [9]}]))
     error("gltf_deep_nodes", "gltf", "nested more than 1024 deep",
           gltf=gltf_text(nodes=[{"children": [i + 1]} for i in range(2000)] + [{"mesh": 0}]))
-    error("gltf_shared_nodes_explode", "gltf", "node instances",
+    error("gltf_shared_nodes_explode", "gltf", "primitive instances",
           gltf=gltf_text(nodes=[{"children": [i + 1, i + 1]} for i in range(40)] +
                          [{"mesh": 0}]))
+    error("gltf_shared_empty_nodes_explode", "gltf", "node instances",
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [1]}] +
+                         [{"children": [i + 2, i + 2]} for i in range(40)] + [{}]))
     error("gltf_default_scene_out_of_range", "gltf", "scene 5 does not exist",
           gltf=gltf_text(extra={"scene": 5}))
     error("gltf_matrix_15_numbers", "gltf", "matrix has 15 numbers, expected 16",

@@ -26,7 +26,8 @@ std::string base64(const std::string& bytes) {
   std::string out;
   std::size_t i = 0;
   for (; i + 2 < bytes.size(); i += 3) {
-    const auto a = std::uint8_t(bytes[i]), b = std::uint8_t(bytes[i + 1]), c = std::uint8_t(bytes[i + 2]);
+    const auto a = std::uint8_t(bytes[i]), b = std::uint8_t(bytes[i + 1]),
+               c = std::uint8_t(bytes[i + 2]);
     out += {k[a >> 2], k[((a & 3) << 4) | (b >> 4)], k[((b & 15) << 2) | (c >> 6)], k[c & 63]};
   }
   if (i + 1 == bytes.size()) {
@@ -54,7 +55,8 @@ class GltfFile {
                      std::to_string(values.size() * sizeof(T)) + "}");
     accessors_.push_back(R"({"bufferView":)" + std::to_string(index) + R"(,"componentType":)" +
                          std::to_string(component_type) + R"(,"count":)" + std::to_string(count) +
-                         R"(,"type":")" + type + "\"" + (normalized ? R"(,"normalized":true)" : "") + "}");
+                         R"(,"type":")" + type + "\"" +
+                         (normalized ? R"(,"normalized":true)" : "") + "}");
     return index;
   }
   int floats(const std::vector<float>& v, const std::string& type, std::size_t per) {
@@ -67,10 +69,10 @@ class GltfFile {
   std::string json(std::string rest, bool glb = false) const {
     if (rest.find("\"nodes\"") == std::string::npos)
       rest += R"(,"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])";
-    std::string s = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":)" +
-                    std::to_string(bin_.size()) +
-                    (glb ? "" : R"(,"uri":"data:application/octet-stream;base64,)" + base64(bin_) + "\"") +
-                    R"(}],"bufferViews":[)";
+    std::string s =
+        R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":)" + std::to_string(bin_.size()) +
+        (glb ? "" : R"(,"uri":"data:application/octet-stream;base64,)" + base64(bin_) + "\"") +
+        R"(}],"bufferViews":[)";
     for (std::size_t i = 0; i < views_.size(); ++i) s += (i ? "," : "") + views_[i];
     s += R"(],"accessors":[)";
     for (std::size_t i = 0; i < accessors_.size(); ++i) s += (i ? "," : "") + accessors_[i];
@@ -101,9 +103,9 @@ class GltfFile {
 // A triangle (0,0,0), (1,0,0), (0,1,0) with normals +z and texture coordinates.
 GltfFile triangle() {
   GltfFile f;
-  f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);       // accessor 0: POSITION
-  f.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);       // accessor 1: NORMAL
-  f.floats({0, 0.25f, 1, 0, 0.5f, 1}, "VEC2", 2);         // accessor 2: TEXCOORD_0
+  f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);  // accessor 0: POSITION
+  f.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);  // accessor 1: NORMAL
+  f.floats({0, 0.25f, 1, 0, 0.5f, 1}, "VEC2", 2);    // accessor 2: TEXCOORD_0
   return f;
 }
 
@@ -122,8 +124,8 @@ TEST(Gltf, NodeTransformsComposeParentTimesChild) {
   const double s = std::sqrt(0.5);
   const std::string nodes =
       R"(,"scenes":[{"nodes":[0]}],"nodes":[{"translation":[10,0,0],"children":[1]},)"
-      R"({"mesh":0,"translation":[1,2,3],"rotation":[0,0,)" + std::to_string(s) + "," +
-      std::to_string(s) + R"(],"scale":[2,2,2]}])";
+      R"({"mesh":0,"translation":[1,2,3],"rotation":[0,0,)" +
+      std::to_string(s) + "," + std::to_string(s) + R"(],"scale":[2,2,2]}])";
   const Scene scene = load_scene(dir.write("t.gltf", triangle().json(kTriangleMesh + nodes)));
   ASSERT_EQ(scene.meshes.size(), 1u);
   const Mesh& m = scene.meshes[0];
@@ -167,7 +169,8 @@ TEST(Gltf, ReadsNormalizedIntegerTexcoords) {
   GltfFile f;
   f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
   f.accessor(std::vector<std::uint16_t>{0, 65535, 65535, 0, 0, 0}, 5123, "VEC2", 3, true);
-  const std::string rest = R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1}}]}])";
+  const std::string rest =
+      R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1}}]}])";
   const Scene scene = load_scene(dir.write("uv16.gltf", f.json(rest)));
   const auto& uv = scene.meshes.at(0).texcoords;
   ASSERT_EQ(uv.size(), 3u);
@@ -182,10 +185,14 @@ TEST(Gltf, ReadsIndicesOfEveryComponentType) {
     GltfFile f;
     f.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3);
     const std::vector<unsigned> idx = {0, 1, 2, 0, 2, 3};
-    if (type == 5121) f.accessor(std::vector<std::uint8_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
-    if (type == 5123) f.accessor(std::vector<std::uint16_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
-    if (type == 5125) f.accessor(std::vector<std::uint32_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
-    const std::string rest = R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])";
+    if (type == 5121)
+      f.accessor(std::vector<std::uint8_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
+    if (type == 5123)
+      f.accessor(std::vector<std::uint16_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
+    if (type == 5125)
+      f.accessor(std::vector<std::uint32_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
+    const std::string rest =
+        R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])";
     const Scene scene = load_scene(dir.write("quad.gltf", f.json(rest)));
     ASSERT_EQ(scene.meshes.size(), 1u) << type;
     const Mesh& m = scene.meshes[0];
@@ -280,7 +287,8 @@ TEST(Gltf, MissingImageFileIsOneLine) {
 
 TEST(Gltf, CameraComesFromItsNode) {
   const test::TempDir dir("gltf");
-  const std::string rest = kTriangleMesh +
+  const std::string rest =
+      kTriangleMesh +
       R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.5,"znear":0.1}}],)"
       R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,1,5]}],"scenes":[{"nodes":[0,1]}])";
   const Scene scene = load_scene(dir.write("cam.gltf", triangle().json(rest)));
@@ -302,7 +310,8 @@ TEST(Gltf, SceneWithoutCameraOrLightsIsFramed) {
 
 TEST(Gltf, PointLightGivesItsIlluminanceAtTheSceneCentre) {
   const test::TempDir dir("gltf");
-  const std::string rest = kTriangleMesh +
+  const std::string rest =
+      kTriangleMesh +
       R"(,"extensionsUsed":["KHR_lights_punctual"],)"
       R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":100,)"
       R"("color":[1,0.5,0.25],"range":50}]}},)"
@@ -319,7 +328,8 @@ TEST(Gltf, PointLightGivesItsIlluminanceAtTheSceneCentre) {
 
 TEST(Gltf, GlbLoadsAsItsJsonForm) {
   const test::TempDir dir("gltf");
-  const std::string nodes = R"(,"nodes":[{"mesh":0,"translation":[1,2,3]}],"scenes":[{"nodes":[0]}])";
+  const std::string nodes =
+      R"(,"nodes":[{"mesh":0,"translation":[1,2,3]}],"scenes":[{"nodes":[0]}])";
   const GltfFile f = triangle();
   const Scene a = load_scene(dir.write("a.gltf", f.json(kTriangleMesh + nodes)));
   const Scene b = load_scene(dir.write("b.GLB", f.glb(kTriangleMesh + nodes)));
@@ -332,7 +342,8 @@ TEST(Gltf, GlbLoadsAsItsJsonForm) {
 
 TEST(Gltf, NodeCycleIsAnError) {
   const test::TempDir dir("gltf");
-  const std::string rest = kTriangleMesh +
+  const std::string rest =
+      kTriangleMesh +
       R"(,"nodes":[{"mesh":0,"children":[1]},{"children":[0]}],"scenes":[{"nodes":[0]}])";
   const std::string path = dir.write("cycle.gltf", triangle().json(rest));
   const std::string msg = test::error_of([&] { load_scene(path); });
