@@ -1,9 +1,10 @@
-// rt2/scene_io.cpp — the public entry points of rt2/scene_io.h: TOML scene files and
-// OBJ/MTL meshes into rt2::Scene.
+// rt2/scene_io.cpp — the public entry points of rt2/scene_io.h: TOML scene files, OBJ/MTL
+// meshes and glTF 2.0 files into rt2::Scene.
 //
 // The work is done in rt2/io/: toml_scene (screening, parsing and the scene sections, on
 // top of the typed toml_reader), obj_mesh (OBJ checks, MTL libraries, assembly into a Mesh,
-// with the MTL mapping in mtl) and text (the shared message and file helpers). Here each
+// with the MTL mapping in mtl), gltf_scene (glTF 2.0 through tinygltf), framing (the camera
+// and light of a file that has none) and text (the shared message and file helpers). Here each
 // entry point runs its loader through `guarded`, so that only rt2::Error, with a one-line
 // message, escapes; frame_obj builds the camera, light and ground around a bare OBJ, and
 // load_obj leaves the scene as it was on an error.
@@ -11,13 +12,14 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <new>
 #include <string>
 
 #include "rt2/error.h"
+#include "rt2/io/framing.h"
+#include "rt2/io/gltf_scene.h"
 #include "rt2/io/obj_mesh.h"
 #include "rt2/io/text.h"
 #include "rt2/io/toml_scene.h"
@@ -28,10 +30,14 @@ namespace {
 namespace fs = std::filesystem;
 
 using io::error_at;
-using io::fmt;
+using io::Framing;
+using io::framing_camera;
+using io::framing_light;
+using io::framing_of;
 using io::kMaxObjBytes;
 using io::obj_to_mesh;
 using io::one_line;
+using io::read_gltf_scene;
 using io::read_text_file;
 using io::read_toml_scene;
 using io::validate;
@@ -64,9 +70,10 @@ Scene load_scene(const std::string& path) {
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".toml") return load_toml_scene(path);
     if (ext == ".obj") return frame_obj(path);
+    if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
     error_at(path, 0, 0,
              (ext.empty() ? "no file extension" : "unknown file extension '" + ext + "'") +
-                 "; expected a .toml scene or an .obj mesh");
+                 "; expected a .toml scene, an .obj mesh or a .gltf/.glb glTF 2.0 scene");
   });
 }
 
@@ -74,23 +81,19 @@ Scene load_toml_scene(const std::string& path) {
   return guarded(path, [&] { return read_toml_scene(path); });
 }
 
+Scene load_gltf_scene(const std::string& path) {
+  return guarded(path, [&] { return read_gltf_scene(path); });
+}
+
 Scene frame_obj(const std::string& obj_path) {
   return guarded(obj_path, [&] {
     Scene scene;
     scene.meshes.push_back(load_obj(obj_path, scene));
     const Aabb box = scene.meshes.back().bounds();
-    const vec4 c = box.center();
-    const vec4 half = box.extent() * 0.5f;
-    const float r = std::sqrt(float(dot(half, half)));  // half the diagonal
-    if (!(r >= 1e-15f && r <= 1e15f))
-      error_at(obj_path, 0, 0,
-               "the mesh is too " + std::string(r > 1.0f ? "large" : "small") +
-                   " to frame (half diagonal " + fmt(r) + ")");
-    scene.camera =
-        Camera::look_at(c + vec4(0.0f, 0.3f * r, 2.2f * r), c, vec4(0.0f, 1.0f, 0.0f), 45.0f);
-    Light light;
-    light.position = c + vec4(r, 3.0f * r, 2.0f * r);
-    scene.lights.push_back(light);
+    const Framing frame = framing_of(obj_path, box, "mesh");
+    const float r = frame.radius;
+    scene.camera = framing_camera(frame);
+    scene.lights.push_back(framing_light(frame));
     Material ground;
     ground.diffuse = vec4(0.8f, 0.8f, 0.8f);
     ground.diffuse2 = vec4(0.3f, 0.3f, 0.3f);

@@ -1,5 +1,5 @@
-// rt2/scene_io.h — loading scenes: TOML scene files (toml++) and OBJ/MTL meshes
-// (tinyobjloader).
+// rt2/scene_io.h — loading scenes: TOML scene files (toml++), OBJ/MTL meshes
+// (tinyobjloader) and glTF 2.0 scenes (.gltf, .glb; tinygltf).
 //
 // The scene format and the MTL → Material mapping are documented in scenes/FORMAT.md. Every
 // problem in the input — a missing file, a syntax error, an unknown key, a value out of
@@ -20,12 +20,19 @@
 
 namespace rt2 {
 
-// Loads `path`: a .toml scene file, or a bare .obj mesh which is framed automatically.
-// Throws rt2::Error with a one-line message on any problem.
+// Loads `path` by its extension (any case): a .toml scene file, a bare .obj mesh which is
+// framed automatically, or a .gltf/.glb glTF 2.0 scene. Throws rt2::Error with a one-line
+// message on any problem.
 Scene load_scene(const std::string& path);
 
 // Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
 Scene load_toml_scene(const std::string& path);
+
+// Loads a glTF 2.0 scene, JSON (.gltf) or binary (.glb), told apart by its content
+// (scenes/FORMAT.md: what is read and how it maps). Without a camera or without lights it is
+// framed as frame_obj frames an OBJ (no ground plane). Buffer and image files are relative
+// to its folder; images are not decoded here (TextureDesc).
+Scene load_gltf_scene(const std::string& path);
 
 // A bare OBJ, framed: camera from its bounding box (looking at the centre from the front,
 // slightly above, the whole box in view), one white light above-front, a ground plane with a

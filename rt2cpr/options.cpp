@@ -131,7 +131,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
 
   app.add_option("scene_file", positional_scene, "the scene, as with --scene")
       ->default_str("");
-  app.add_option("--scene", o.scene, "scene file (.toml) or mesh (.obj)")
+  app.add_option("--scene", o.scene, "scene file (.toml), mesh (.obj) or glTF 2.0 (.gltf/.glb)")
       ->default_str("built-in scene");
   app.add_option("--preset", o.preset, "low | middle | hard | veryhard")->default_str("none");
   app.add_option("--width", width, "image width in pixels");

@@ -1,4 +1,4 @@
-// tests/fuzz/fuzz_io.h — what the two libFuzzer targets (fuzz_scene.cpp, fuzz_obj.cpp) share:
+// tests/fuzz/fuzz_io.h — what the libFuzzer targets (fuzz_scene, fuzz_obj, fuzz_gltf) share:
 // a per-process scratch folder in /dev/shm, byte-exact file writes into it, and the one call
 // into the loader whose contract is being fuzzed.
 //

@@ -571,6 +571,213 @@ def sizes():
     generated("obj_zeros_2_gib", "obj", "error: file contains a NUL byte\nline: 1\n")
 
 
+# ---- glTF 2.0 ---------------------------------------------------------------------------------
+
+def gltf_json(extra=None, positions=(0, 0, 0, 1, 0, 0, 0, 1, 0), indices=None, glb=False,
+              views=None, accessors=None, primitive=None, nodes=None):
+    """A glTF of one triangle: its buffer holds `positions` (floats) and `indices` (unsigned
+    int); `extra` replaces or adds top-level members; views/accessors/primitive/nodes replace
+    the defaults. Returns (json_dict, bin_bytes)."""
+    import struct
+    bin_ = struct.pack(f"<{len(positions)}f", *positions)
+    pos_len = len(bin_)
+    if indices is not None:
+        bin_ += struct.pack(f"<{len(indices)}I", *indices)
+    d = {"asset": {"version": "2.0"},
+         "buffers": [{"byteLength": len(bin_)}],
+         "bufferViews": views if views is not None else
+         [{"buffer": 0, "byteOffset": 0, "byteLength": pos_len}] +
+         ([{"buffer": 0, "byteOffset": pos_len, "byteLength": len(bin_) - pos_len}]
+          if indices is not None else []),
+         "accessors": accessors if accessors is not None else
+         [{"bufferView": 0, "componentType": 5126, "count": len(positions) // 3, "type": "VEC3"}] +
+         ([{"bufferView": 1, "componentType": 5125, "count": len(indices), "type": "SCALAR"}]
+          if indices is not None else []),
+         "meshes": [{"primitives": [primitive if primitive is not None else
+                                    dict({"attributes": {"POSITION": 0}},
+                                         **({"indices": 1} if indices is not None else {}))]}],
+         "nodes": nodes if nodes is not None else [{"mesh": 0}],
+         "scenes": [{"nodes": [0]}]}
+    if not glb:
+        import base64
+        d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + \
+            base64.b64encode(bin_).decode()
+    d.update(extra or {})
+    return d, bin_
+
+
+def glb_bytes(d, bin_):
+    import json
+    import struct
+    j = json.dumps(d).encode()
+    j += b" " * (-len(j) % 4)
+    b = bin_ + b"\0" * (-len(bin_) % 4)
+    return (b"glTF" + struct.pack("<II", 2, 12 + 8 + len(j) + 8 + len(b)) +
+            struct.pack("<I", len(j)) + b"JSON" + j + struct.pack("<I", len(b)) + b"BIN\0" + b)
+
+
+def gltf_text(**kw):
+    import json
+    return json.dumps(gltf_json(**kw)[0], indent=1)
+
+
+def gltf():
+    valid = gltf_text()
+    ok("gltf_minimal", "gltf", "quiet: true\nfaces: 1\n", gltf=valid)
+    ok("glb_minimal", "glb", "quiet: true\nfaces: 1\n", glb=glb_bytes(*gltf_json(glb=True)))
+    # Broken JSON and binary containers.
+    error("gltf_truncated_json", "gltf", "", gltf=valid[: len(valid) // 2])
+    error("gltf_not_json", "gltf", "", gltf="this is not JSON\n")
+    error("gltf_empty", "gltf", "file is empty", gltf="")
+    error("gltf_json_array", "gltf", "", gltf="[1, 2, 3]\n")
+    error("gltf_no_asset", "gltf", "", gltf='{"meshes": []}\n')
+    good_glb = glb_bytes(*gltf_json(glb=True))
+    error("glb_header_only", "glb", "", glb=good_glb[:12])
+    error("glb_length_too_large", "glb", "",
+          glb=good_glb[:8] + (len(good_glb) + 100).to_bytes(4, "little") + good_glb[12:])
+    error("glb_json_chunk_too_long", "glb", "",
+          glb=good_glb[:12] + (1 << 30).to_bytes(4, "little") + good_glb[16:])
+    error("glb_truncated", "glb", "", glb=good_glb[: len(good_glb) - 10])
+    # tinygltf does not check the version field of the header; the layout is 2.0's.
+    ok("glb_version_1", "glb", "quiet: true\nfaces: 1\n",
+       glb=good_glb[:4] + (1).to_bytes(4, "little") + good_glb[8:])
+    error("glb_not_glb", "glb", "", glb=b"\x00\x01garbage bytes\xff\xfe")
+    # Accessors and buffer views.
+    error("gltf_accessor_out_of_range", "gltf", "accessor 7 does not exist",
+          gltf=gltf_text(primitive={"attributes": {"POSITION": 7}}))
+    # tinygltf drops an attribute whose accessor is negative.
+    error("gltf_accessor_negative", "gltf", "has no POSITION attribute",
+          gltf=gltf_text(primitive={"attributes": {"POSITION": -2}}))
+    error("gltf_buffer_view_beyond_buffer", "gltf", "lies beyond its buffer",
+          gltf=gltf_text(views=[{"buffer": 0, "byteOffset": 24, "byteLength": 36}]))
+    error("gltf_buffer_view_bad_buffer", "gltf", "",
+          gltf=gltf_text(views=[{"buffer": 3, "byteLength": 36}]))
+    error("gltf_accessor_beyond_view", "gltf", "lie beyond bufferView 0",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5126, "count": 4,
+                                     "type": "VEC3"}]))
+    error("gltf_accessor_offset_beyond_view", "gltf", "lie beyond bufferView 0",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "byteOffset": 4000000000,
+                                     "componentType": 5126, "count": 3, "type": "VEC3"}]))
+    error("gltf_huge_count", "gltf", "is too large",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5126,
+                                     "count": 4000000000, "type": "VEC3"}]))
+    error("gltf_position_unsigned_short", "gltf", "components are unsigned short, expected float",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5123, "count": 3,
+                                     "type": "VEC3"}]))
+    error("gltf_position_vec2", "gltf", "expected 3",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5126, "count": 3,
+                                     "type": "VEC2"}]))
+    error("gltf_unknown_component_type", "gltf", "",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 9999, "count": 3,
+                                     "type": "VEC3"}]))
+    error("gltf_sparse_accessor", "gltf", "sparse accessors are not supported",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5126, "count": 3,
+                                     "type": "VEC3", "sparse": {
+                                         "count": 1,
+                                         "indices": {"bufferView": 0, "componentType": 5125},
+                                         "values": {"bufferView": 0}}}]))
+    error("gltf_no_position", "gltf", "has no POSITION attribute",
+          gltf=gltf_text(primitive={"attributes": {}}))
+    error("gltf_index_out_of_range", "gltf", "index 2 is 5, but there are only 3 vertices",
+          gltf=gltf_text(indices=[0, 1, 5]))
+    error("gltf_nan_position", "gltf", "POSITION 1 is not a finite float",
+          gltf=gltf_text(positions=(0, 0, 0, float("nan"), 0, 0, 0, 1, 0)))
+    error("gltf_scale_overflows", "gltf", "is not a finite float",
+          gltf=gltf_text(nodes=[{"mesh": 0, "scale": [1e38, 1e38, 1e38]},]).replace(
+              "1e+38", "1e+300"))
+    ok("gltf_some_degenerate", "gltf", "faces: 1\ndegenerate: 1\n",
+       gltf=gltf_text(positions=(0, 0, 0, 1, 0, 0, 0, 1, 0), indices=[0, 1, 2, 0, 0, 1]))
+    error("gltf_all_degenerate", "gltf", "all 1 triangles are degenerate",
+          gltf=gltf_text(positions=(0, 0, 0, 1, 0, 0, 2, 0, 0)))
+    # Files named by URIs.
+    missing_bin, _ = gltf_json()
+    missing_bin["buffers"][0]["uri"] = "missing.bin"
+    import json
+    error("gltf_missing_buffer_file", "gltf", "missing.bin", gltf=json.dumps(missing_bin))
+    missing_bin["buffers"][0]["uri"] = "."
+    error("gltf_buffer_is_directory", "gltf", "", gltf=json.dumps(missing_bin))
+    missing_bin["buffers"][0]["uri"] = "../hostile/gltf_minimal.gltf"
+    error("gltf_buffer_wrong_size", "gltf", "", gltf=json.dumps(missing_bin))
+    textured = {"materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+                "textures": [{"source": 0}], "images": [{"uri": "missing.png"}]}
+    tri_mat = {"attributes": {"POSITION": 0}, "material": 0}
+    error("gltf_missing_image", "gltf", "image 0: missing.png: No such file or directory",
+          gltf=gltf_text(extra=textured, primitive=tri_mat))
+    error("gltf_image_is_directory", "gltf", "image 0: .: is a directory",
+          gltf=gltf_text(extra=dict(textured, images=[{"uri": "."}]), primitive=tri_mat))
+    error("gltf_image_buffer_view_beyond_buffer", "gltf", "image 0: bufferView 1",
+          gltf=gltf_text(extra=dict(textured, images=[{"bufferView": 1, "mimeType": "image/png"}]),
+                         primitive=tri_mat,
+                         views=[{"buffer": 0, "byteLength": 36},
+                                {"buffer": 0, "byteOffset": 30, "byteLength": 100}]))
+    error("gltf_texture_out_of_range", "gltf", "texture 0 does not exist",
+          gltf=gltf_text(extra=dict(textured, textures=[]), primitive=tri_mat))
+    error("gltf_image_out_of_range", "gltf", "image 4 does not exist",
+          gltf=gltf_text(extra=dict(textured, textures=[{"source": 4}]), primitive=tri_mat))
+    error("gltf_material_out_of_range", "gltf", "material 0 does not exist",
+          gltf=gltf_text(primitive=tri_mat))
+    error("gltf_metallic_2", "gltf", "metallicFactor is 2",
+          gltf=gltf_text(extra={"materials": [{"pbrMetallicRoughness": {"metallicFactor": 2}}]},
+                         primitive=tri_mat))
+    # The node graph.
+    error("gltf_node_cycle", "gltf", "is its own descendant",
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [1]}, {"children": [0]}]))
+    error("gltf_node_own_child", "gltf", "node #0 is its own descendant",
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [0]}]))
+    error("gltf_node_out_of_range", "gltf", "node 9 does not exist",
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [9]}]))
+    error("gltf_deep_nodes", "gltf", "nested more than 1024 deep",
+          gltf=gltf_text(nodes=[{"children": [i + 1]} for i in range(2000)] + [{"mesh": 0}]))
+    error("gltf_shared_nodes_explode", "gltf", "primitive instances",
+          gltf=gltf_text(nodes=[{"children": [i + 1, i + 1]} for i in range(40)] +
+                         [{"mesh": 0}]))
+    error("gltf_shared_empty_nodes_explode", "gltf", "node instances",
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [1]}] +
+                         [{"children": [i + 2, i + 2]} for i in range(40)] + [{}]))
+    error("gltf_default_scene_out_of_range", "gltf", "scene 5 does not exist",
+          gltf=gltf_text(extra={"scene": 5}))
+    error("gltf_matrix_15_numbers", "gltf", "matrix has 15 numbers, expected 16",
+          gltf=gltf_text(nodes=[{"mesh": 0, "matrix": [1] * 15}]))
+    error("gltf_zero_quaternion", "gltf", "rotation is a zero quaternion",
+          gltf=gltf_text(nodes=[{"mesh": 0, "rotation": [0, 0, 0, 0]}]))
+    error("gltf_mesh_out_of_range", "gltf", "mesh 3 does not exist",
+          gltf=gltf_text(nodes=[{"mesh": 3}]))
+    ok("gltf_no_scenes", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_text(extra={"scenes": []}))
+    # Primitive modes.
+    ok("gltf_points_and_triangles", "gltf", "faces: 1\nwarning: mode 0 (points or lines) is skipped\n",
+       gltf=gltf_text(extra={"meshes": [{"primitives": [
+           {"attributes": {"POSITION": 0}, "mode": 0}, {"attributes": {"POSITION": 0}}]}]}))
+    error("gltf_only_lines", "gltf", "no triangles in the scene",
+          gltf=gltf_text(primitive={"attributes": {"POSITION": 0}, "mode": 1}))
+    ok("gltf_triangle_fan", "gltf", "quiet: true\nfaces: 2\n",
+       gltf=gltf_text(positions=(0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0),
+                      primitive={"attributes": {"POSITION": 0}, "mode": 6}))
+    # Cameras and lights.
+    error("gltf_camera_out_of_range", "gltf", "camera 2 does not exist",
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [1]}, {"camera": 2}]))
+    error("gltf_yfov_zero", "gltf", "yfov 0 is not in (0, pi)",
+          gltf=gltf_text(extra={"cameras": [{"type": "perspective",
+                                             "perspective": {"yfov": 0, "znear": 0.1}}]},
+                         nodes=[{"mesh": 0, "children": [1]}, {"camera": 0}]))
+    ok("gltf_orthographic_camera", "gltf",
+       "faces: 1\nwarning: rendered as a perspective camera of 60 degrees\n",
+       gltf=gltf_text(extra={"cameras": [{"type": "orthographic", "orthographic": {
+           "xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 100}}]},
+           nodes=[{"mesh": 0, "children": [1]}, {"camera": 0, "translation": [0, 0, 5]}]))
+    lights = {"extensionsUsed": ["KHR_lights_punctual"],
+              "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point",
+                                                                 "intensity": 10}]}}}
+    error("gltf_light_out_of_range", "gltf", "KHR_lights_punctual light 3 does not exist",
+          gltf=gltf_text(extra=lights, nodes=[{"mesh": 0, "children": [1]}, {
+              "extensions": {"KHR_lights_punctual": {"light": 3}}}]))
+    ok("gltf_directional_light", "gltf", "faces: 1\nwarning: placed as a point light far away\n",
+       gltf=gltf_text(extra={"extensions": {"KHR_lights_punctual": {"lights": [
+           {"type": "directional", "intensity": 3}]}}},
+           nodes=[{"mesh": 0, "children": [1]}, {
+               "extensions": {"KHR_lights_punctual": {"light": 0}}}]))
+
+
 def main():
     malformed_toml()
     fuzz_found()
@@ -584,6 +791,7 @@ def main():
     keys()
     paths()
     sizes()
+    gltf()
 
 
 if __name__ == "__main__":

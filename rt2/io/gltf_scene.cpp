@@ -1,0 +1,836 @@
+// rt2/io/gltf_scene.cpp — glTF 2.0 files into rt2::Scene (internal; see rt2/io/gltf_scene.h).
+//
+// tinygltf (Debian's libtinygltf, 2.7) parses the JSON, decodes data: URIs and reads the
+// buffer files, through file-system callbacks of rt2's (regular files only, with a size
+// limit, only under the glTF's folder) and an image callback that keeps the bytes
+// undecoded (rt2 decodes images with OpenImageIO when it renders). tinygltf checks little
+// of what it parses, so every index and byte range rt2 follows is checked here before use:
+// accessors (Accessor below), the node graph (cycles, depth, instance count), materials,
+// textures, cameras and lights. Messages name the element: "x.gltf: mesh 0 primitive 1:
+// accessor 3 (POSITION): ...".
+#include "rt2/io/gltf_scene.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <initializer_list>
+#include <map>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "rt2/error.h"
+#include "rt2/io/framing.h"
+#include "rt2/io/text.h"
+
+namespace rt2::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- loading through tinygltf -----------------------------------------------------------
+
+// The folder files may be read from: the glTF's own (FsCallbacks::user_data).
+struct Folder {
+  std::string prefix;  // the folder and a '/', as tinygltf's JoinPath makes paths
+};
+
+// Only regular files under the glTF's folder: tinygltf also looks in the current folder.
+bool file_exists(const std::string& path, void* user) {
+  const auto* folder = static_cast<const Folder*>(user);
+  std::error_code ec;
+  return path.starts_with(folder->prefix) && fs::is_regular_file(path, ec);
+}
+
+// No `~` or variable expansion (tinygltf's own uses wordexp on some systems).
+std::string expand_file_path(const std::string& path, void*) { return path; }
+
+// rt2's file reading: regular files only, at most kMaxGltfBytes; the message is tinygltf's err.
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                     void*) {
+  try {
+    const std::string bytes = read_file(path, kMaxGltfBytes, "");
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const Error& e) {
+    if (err) *err = e.what();
+    return false;
+  }
+}
+
+bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "rt2 does not write files while loading";
+  return false;
+}
+
+// The image callback: tinygltf calls it with the bytes of a data: URI, a file it read, or a
+// bufferView (a pointer it computed without checking the view against the buffer). Only a
+// data: URI's bytes are kept (in image->image, undecoded); a file is taken by its uri, and a
+// bufferView's bytes are copied later, after their range is checked.
+bool keep_undecoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+  if (image->bufferView >= 0 || !image->uri.empty()) return true;
+  if (bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
+// The first non-empty line of a tinygltf message, at most 300 characters.
+std::string first_line(const std::string& msg) {
+  std::size_t start = 0;
+  while (start < msg.size()) {
+    std::size_t end = msg.find('\n', start);
+    if (end == std::string::npos) end = msg.size();
+    std::string line = one_line(std::string_view(msg).substr(start, end - start));
+    if (line.find_first_not_of(' ') != std::string::npos) {
+      if (line.size() > 300) line = line.substr(0, 300) + "...";
+      return line;
+    }
+    start = end + 1;
+  }
+  return "tinygltf could not parse it";
+}
+
+tinygltf::Model parse_model(const std::string& path) {
+  const std::string bytes = read_file(path, kMaxGltfBytes, "");
+  if (bytes.empty()) error_at(path, 0, 0, "file is empty");
+  Folder folder;
+  folder.prefix = fs::path(path).parent_path().string();
+  if (folder.prefix.empty()) folder.prefix = ".";
+  const std::string base = folder.prefix;
+  if (!folder.prefix.ends_with('/')) folder.prefix += '/';
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(
+      {&file_exists, &expand_file_path, &read_whole_file, &refuse_write, &folder});
+  loader.SetImageLoader(&keep_undecoded, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool ok = bytes.starts_with("glTF")
+                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base)
+                      : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), size, base);
+  if (!ok) error_at(path, 0, 0, first_line(err));
+  return model;
+}
+
+// ---- transforms, in double ----------------------------------------------------------------
+
+// A 4x4 matrix, column-major as glTF stores it: m[col * 4 + row].
+using Mat4 = std::array<double, 16>;
+
+constexpr Mat4 kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+Mat4 operator*(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += a[k * 4 + row] * b[c * 4 + k];
+      r[c * 4 + row] = s;
+    }
+  return r;
+}
+
+struct Vec3d {
+  double x = 0, y = 0, z = 0;
+};
+
+Vec3d transform_point(const Mat4& m, const Vec3d& p) {
+  return {m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12],
+          m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
+          m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]};
+}
+
+Vec3d transform_vector(const Mat4& m, const Vec3d& v) {
+  return {m[0] * v.x + m[4] * v.y + m[8] * v.z, m[1] * v.x + m[5] * v.y + m[9] * v.z,
+          m[2] * v.x + m[6] * v.y + m[10] * v.z};
+}
+
+// The cofactor matrix of the upper 3x3 (det · inverse transpose), as a Mat4 without
+// translation: it maps normals, and stays defined when the matrix is singular.
+Mat4 cofactor(const Mat4& m) {
+  const auto e = [&](int row, int col) { return m[col * 4 + row]; };
+  Mat4 c{};
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) {
+      const int r0 = (row + 1) % 3, r1 = (row + 2) % 3, c0 = (col + 1) % 3, c1 = (col + 2) % 3;
+      c[col * 4 + row] = e(r0, c0) * e(r1, c1) - e(r0, c1) * e(r1, c0);
+    }
+  c[15] = 1;
+  return c;
+}
+
+double determinant3(const Mat4& m) {
+  const Mat4 c = cofactor(m);
+  return m[0] * c[0] + m[4] * c[4] + m[8] * c[8];
+}
+
+Vec3d normalized(const Vec3d& v) {
+  const double len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  return {v.x / len, v.y / len, v.z / len};
+}
+
+bool finite3(const Vec3d& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Whether v is finite as floats too.
+bool fits_float(const Vec3d& v) {
+  return std::isfinite(float(v.x)) && std::isfinite(float(v.y)) && std::isfinite(float(v.z));
+}
+
+vec4 to_vec4(const Vec3d& v) { return vec4(float(v.x), float(v.y), float(v.z)); }
+
+// ---- the loader ---------------------------------------------------------------------------
+
+// "#3" or "#3 'name'", for messages.
+std::string named(int index, const std::string& name) {
+  return "#" + std::to_string(index) + (name.empty() ? "" : " '" + one_line(name) + "'");
+}
+
+// %XX escapes of a URI decoded (glTF URIs of files are percent-encoded).
+std::string uri_decode(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    const auto hex = [](char c) {
+      if (c >= '0' && c <= '9') return c - '0';
+      if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+      if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+      return -1;
+    };
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// A checked accessor: element i starts at data + i * stride, holds `components` values of
+// `component_size` bytes each, and lies within its buffer view and buffer.
+struct Accessor {
+  const unsigned char* data = nullptr;
+  std::size_t count = 0, stride = 0;
+  int component_type = 0, components = 0;
+  std::size_t component_size = 0;
+  bool normalized = false;
+
+  // Component k of element i as a double (normalized integers mapped to [0, 1]).
+  double get(std::size_t i, int k) const {
+    const unsigned char* p = data + i * stride + std::size_t(k) * component_size;
+    switch (component_type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float f;
+        std::memcpy(&f, p, 4);
+        return f;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t u;
+        std::memcpy(&u, p, 2);
+        return normalized ? u / 65535.0 : u;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        std::uint32_t u;
+        std::memcpy(&u, p, 4);
+        return u;
+      }
+      default: return 0;
+    }
+  }
+};
+
+std::size_t component_size(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+const char* component_name(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "byte";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "unsigned byte";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "short";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "unsigned short";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "int";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "unsigned int";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "float";
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return "double";
+    default: return "an unknown component type";
+  }
+}
+
+int component_count(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+  }
+}
+
+// What a glTF file is read into, and from.
+class GltfReader {
+ public:
+  explicit GltfReader(const std::string& path) : path_(path), model_(parse_model(path)) {}
+
+  Scene read();
+
+ private:
+  [[noreturn]] void fail(const std::string& msg) const { error_at(path_, 0, 0, msg); }
+  void warn_once(const std::string& key, const std::string& msg);
+
+  // The bytes [offset, offset + length) of buffer view `index`, checked.
+  std::string_view view_bytes(int index, std::size_t offset, std::size_t length,
+                              const std::string& what) const;
+  Accessor accessor(int index, const std::string& what, std::initializer_list<int> types,
+                    int components) const;
+
+  void walk(int node, const Mat4& parent, int depth);
+  void add_primitive(int mesh_index, int prim_index, const Mat4& world);
+  void set_camera(int node, int camera_index, const Mat4& world);
+  void add_light(int node, const tinygltf::Value& ext, const Mat4& world);
+  void finish_lights();
+  std::uint32_t material(int index);
+  std::uint32_t texture(int index, bool srgb, int tex_coord, const std::string& what);
+
+  std::string path_;
+  tinygltf::Model model_;
+  Scene scene_;
+  std::vector<int> material_of_;  // glTF material -> scene material, or -1
+  int default_material_ = -1;
+  std::map<std::pair<int, bool>, std::uint32_t> textures_;  // (image, srgb) -> scene texture
+  std::vector<char> on_path_;  // nodes on the current walk (cycle check)
+  std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0;
+  bool have_camera_ = false;
+  std::vector<std::string> warned_;
+  // Lights wait for the scene's bounds (their intensity is scaled at its centre).
+  struct PendingLight {
+    int index;
+    Vec3d position, direction;
+  };
+  std::vector<PendingLight> lights_;
+};
+
+void GltfReader::warn_once(const std::string& key, const std::string& msg) {
+  if (std::find(warned_.begin(), warned_.end(), key) != warned_.end()) return;
+  warned_.push_back(key);
+  warn(path_ + ": " + msg);
+}
+
+std::string_view GltfReader::view_bytes(int index, std::size_t offset, std::size_t length,
+                                        const std::string& what) const {
+  if (index < 0 || std::size_t(index) >= model_.bufferViews.size())
+    fail(what + ": bufferView " + std::to_string(index) + " does not exist (" +
+         std::to_string(model_.bufferViews.size()) + " buffer views)");
+  const tinygltf::BufferView& v = model_.bufferViews[std::size_t(index)];
+  if (v.buffer < 0 || std::size_t(v.buffer) >= model_.buffers.size())
+    fail(what + ": bufferView " + std::to_string(index) + " names buffer " +
+         std::to_string(v.buffer) + ", which does not exist");
+  const std::vector<unsigned char>& b = model_.buffers[std::size_t(v.buffer)].data;
+  if (v.byteOffset > b.size() || v.byteLength > b.size() - v.byteOffset)
+    fail(what + ": bufferView " + std::to_string(index) + " (bytes " +
+         std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) +
+         ") lies beyond its buffer of " + std::to_string(b.size()) + " bytes");
+  if (offset > v.byteLength || length > v.byteLength - offset)
+    fail(what + ": bytes " + std::to_string(offset) + " + " + std::to_string(length) +
+         " lie beyond bufferView " + std::to_string(index) + " of " + std::to_string(v.byteLength) +
+         " bytes");
+  return {reinterpret_cast<const char*>(b.data()) + v.byteOffset + offset, length};
+}
+
+Accessor GltfReader::accessor(int index, const std::string& what, std::initializer_list<int> types,
+                              int components) const {
+  const std::string at = what + ": accessor " + std::to_string(index);
+  if (index < 0 || std::size_t(index) >= model_.accessors.size())
+    fail(at + " does not exist (" + std::to_string(model_.accessors.size()) + " accessors)");
+  const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
+  if (a.sparse.isSparse) fail(at + ": sparse accessors are not supported");
+  Accessor r;
+  r.component_type = a.componentType;
+  r.components = component_count(a.type);
+  r.component_size = component_size(a.componentType);
+  r.normalized = a.normalized;
+  r.count = a.count;
+  if (std::find(types.begin(), types.end(), a.componentType) == types.end()) {
+    std::string expected;
+    for (const int t : types)
+      expected += std::string(expected.empty() ? "" : " or ") + component_name(t);
+    fail(at + ": components are " + component_name(a.componentType) + ", expected " + expected);
+  }
+  if (r.components != components)
+    fail(at + ": has " +
+         (r.components ? std::to_string(r.components) : "an unsupported number of") +
+         " components per element, expected " + std::to_string(components));
+  if (a.bufferView < 0) fail(at + ": has no bufferView (all zeros), which rt2 does not read");
+  if (r.count == 0) return r;
+  const std::size_t element = r.component_size * std::size_t(r.components);
+  const std::size_t view_stride = std::size_t(a.bufferView) < model_.bufferViews.size()
+                                      ? model_.bufferViews[std::size_t(a.bufferView)].byteStride
+                                      : 0;
+  r.stride = view_stride ? view_stride : element;
+  if (r.stride < element)
+    fail(at + ": byteStride " + std::to_string(r.stride) + " is less than its element of " +
+         std::to_string(element) + " bytes");
+  if (r.count > kMaxGltfVertices || r.count - 1 > (std::size_t(1) << 40) / r.stride)
+    fail(at + ": count " + std::to_string(r.count) + " is too large");
+  const std::size_t length = r.stride * (r.count - 1) + element;
+  r.data = reinterpret_cast<const unsigned char*>(
+      view_bytes(a.bufferView, a.byteOffset, length, at).data());
+  return r;
+}
+
+std::uint32_t GltfReader::texture(int index, bool srgb, int tex_coord, const std::string& what) {
+  if (index < 0) return kNoTexture;
+  const std::string at = what + ": texture " + std::to_string(index);
+  if (std::size_t(index) >= model_.textures.size())
+    fail(at + " does not exist (" + std::to_string(model_.textures.size()) + " textures)");
+  if (tex_coord != 0)
+    warn_once("texcoord", "a texture uses TEXCOORD_" + std::to_string(tex_coord) +
+                              "; rt2 reads only TEXCOORD_0");
+  const int image = model_.textures[std::size_t(index)].source;
+  if (image < 0) {
+    warn_once("no source", at + " has no source image (an extension's?); ignored");
+    return kNoTexture;
+  }
+  if (std::size_t(image) >= model_.images.size())
+    fail(at + ": image " + std::to_string(image) + " does not exist (" +
+         std::to_string(model_.images.size()) + " images)");
+  const auto key = std::pair(image, srgb);
+  if (const auto it = textures_.find(key); it != textures_.end()) return it->second;
+  const tinygltf::Image& img = model_.images[std::size_t(image)];
+  const std::string image_at = "image " + std::to_string(image);
+  TextureDesc t;
+  t.srgb = srgb;
+  if (img.bufferView >= 0) {
+    const std::size_t length = model_.bufferViews.size() > std::size_t(img.bufferView)
+                                   ? model_.bufferViews[std::size_t(img.bufferView)].byteLength
+                                   : 0;
+    t.data = std::string(view_bytes(img.bufferView, 0, length, image_at));
+    t.path = fs::path(path_).filename().string() + ":" + image_at;
+  } else if (!img.uri.empty()) {
+    const std::string file = uri_decode(img.uri);
+    const fs::path p = fs::path(path_).parent_path() / file;
+    std::error_code ec;
+    const fs::file_status st = fs::status(p, ec);
+    const std::string why = st.type() == fs::file_type::not_found   ? "No such file or directory"
+                            : st.type() == fs::file_type::directory ? "is a directory"
+                            : st.type() != fs::file_type::regular   ? "is not a regular file"
+                                                                    : "";
+    if (!why.empty()) fail(image_at + ": " + one_line(file) + ": " + why);
+    t.path = p.string();
+  } else {
+    t.data.assign(img.image.begin(), img.image.end());
+    t.path = fs::path(path_).filename().string() + ":" + image_at;
+  }
+  if (t.path.empty() || (t.data.empty() && img.uri.empty())) fail(image_at + " is empty");
+  scene_.textures.push_back(std::move(t));
+  const auto n = std::uint32_t(scene_.textures.size() - 1);
+  textures_.emplace(key, n);
+  return n;
+}
+
+// A number of an extension object, or `fallback`.
+double ext_number(const tinygltf::ExtensionMap& exts, const char* ext, const char* key,
+                  double fallback) {
+  const auto it = exts.find(ext);
+  if (it == exts.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+  const tinygltf::Value& v = it->second.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+std::uint32_t GltfReader::material(int index) {
+  if (index < 0) {
+    if (default_material_ < 0) {
+      Material m;  // glTF's default material: white, metallic 1, roughness 1
+      m.model = Shading::pbr;
+      m.metallic = 1.0f;
+      m.diffuse = m.base_color;
+      default_material_ =
+          int(scene_.add_material(fs::path(path_).filename().string() + ":default", m));
+    }
+    return std::uint32_t(default_material_);
+  }
+  if (std::size_t(index) >= model_.materials.size())
+    fail("material " + std::to_string(index) + " does not exist (" +
+         std::to_string(model_.materials.size()) + " materials)");
+  if (material_of_.empty()) material_of_.assign(model_.materials.size(), -1);
+  if (material_of_[std::size_t(index)] >= 0) return std::uint32_t(material_of_[std::size_t(index)]);
+  const tinygltf::Material& g = model_.materials[std::size_t(index)];
+  const std::string at = "material " + named(index, g.name);
+  const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+  const auto colour = [&](const std::vector<double>& v, std::size_t n, const char* field) {
+    if (v.size() != n)
+      fail(at + ": " + field + " has " + std::to_string(v.size()) + " numbers, expected " +
+           std::to_string(n));
+    for (const double x : v)
+      if (!(x >= 0 && x <= 1e6)) fail(at + ": " + field + " holds " + fmt(x) + ", expected >= 0");
+    return vec4(float(v[0]), float(v[1]), float(v[2]));
+  };
+  const auto unit = [&](double v, const char* field) {
+    if (!(v >= 0 && v <= 1)) fail(at + ": " + field + " is " + fmt(v) + ", expected 0..1");
+    return float(v);
+  };
+  Material m;
+  m.model = Shading::pbr;
+  m.base_color = colour(pbr.baseColorFactor, 4, "baseColorFactor");  // alpha is ignored
+  m.metallic = unit(pbr.metallicFactor, "metallicFactor");
+  m.roughness = unit(pbr.roughnessFactor, "roughnessFactor");
+  const double strength =
+      ext_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0);
+  if (!(strength >= 0 && strength <= 1e6)) fail(at + ": emissiveStrength is " + fmt(strength));
+  m.emissive = colour(g.emissiveFactor, 3, "emissiveFactor") * float(strength);
+  m.transmission =
+      unit(ext_number(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0),
+           "transmissionFactor");
+  const double ior = ext_number(g.extensions, "KHR_materials_ior", "ior", 1.5);
+  if (!(ior >= 1 && ior <= 100)) fail(at + ": ior is " + fmt(ior) + ", expected 1..100");
+  m.ior = float(ior);
+  m.normal_scale = float(g.normalTexture.scale);
+  if (!std::isfinite(m.normal_scale)) fail(at + ": normalTexture.scale is not finite");
+  m.base_color_texture =
+      texture(pbr.baseColorTexture.index, true, pbr.baseColorTexture.texCoord, at);
+  m.metallic_roughness_texture =
+      texture(pbr.metallicRoughnessTexture.index, false, pbr.metallicRoughnessTexture.texCoord, at);
+  m.normal_texture = texture(g.normalTexture.index, false, g.normalTexture.texCoord, at);
+  m.emissive_texture = texture(g.emissiveTexture.index, true, g.emissiveTexture.texCoord, at);
+  // Phong fields, for renderers of Shading::phong: the base colour diffuse, a highlight as
+  // tight as the roughness, metals mirror-like when smooth; the emission adds to Ka.
+  const float alpha = std::max(m.roughness * m.roughness, 0.03f);
+  m.diffuse = m.base_color * (1.0f - 0.5f * m.metallic);
+  m.ambient = m.diffuse * 0.1f + m.emissive;
+  m.specular = vec4(0.04f, 0.04f, 0.04f) * (1.0f - m.metallic) + m.base_color * m.metallic;
+  m.shininess = std::min(2.0f / (alpha * alpha) - 2.0f, 1000.0f);
+  m.reflectivity = m.metallic * (1.0f - m.roughness);
+  m.transparency = m.transmission;
+  const std::string name = fs::path(path_).filename().string() + ":" +
+                           (g.name.empty() ? "#" + std::to_string(index) : one_line(g.name));
+  material_of_[std::size_t(index)] = int(scene_.add_material(name, m));
+  return std::uint32_t(material_of_[std::size_t(index)]);
+}
+
+// A node's local matrix: `matrix`, or translation · rotation · scale.
+Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
+  const auto check = [&](const std::vector<double>& v, std::size_t size, const char* field) {
+    if (!v.empty() && v.size() != size)
+      error_at(at, 0, 0,
+               std::string(field) + " has " + std::to_string(v.size()) + " numbers, expected " +
+                   std::to_string(size));
+    for (const double x : v)
+      if (!std::isfinite(x)) error_at(at, 0, 0, std::string(field) + " holds " + fmt(x));
+  };
+  check(n.matrix, 16, "matrix");
+  check(n.translation, 3, "translation");
+  check(n.rotation, 4, "rotation");
+  check(n.scale, 3, "scale");
+  if (!n.matrix.empty()) {
+    Mat4 m;
+    std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
+    return m;
+  }
+  Mat4 t = kIdentity, r = kIdentity, s = kIdentity;
+  if (!n.translation.empty()) std::copy(n.translation.begin(), n.translation.end(), t.begin() + 12);
+  if (!n.rotation.empty()) {
+    double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+    const double len = std::sqrt(x * x + y * y + z * z + w * w);
+    if (!(len > 0)) error_at(at, 0, 0, "rotation is a zero quaternion");
+    x /= len, y /= len, z /= len, w /= len;
+    // clang-format off
+    r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),     0,
+         2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),     0,
+         2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y), 0,
+         0,                       0,                       0,                       1};
+    // clang-format on
+  }
+  if (!n.scale.empty()) s[0] = n.scale[0], s[5] = n.scale[1], s[10] = n.scale[2];
+  return t * r * s;
+}
+
+void GltfReader::walk(int node, const Mat4& parent, int depth) {
+  if (node < 0 || std::size_t(node) >= model_.nodes.size())
+    fail("node " + std::to_string(node) + " does not exist (" +
+         std::to_string(model_.nodes.size()) + " nodes)");
+  const tinygltf::Node& n = model_.nodes[std::size_t(node)];
+  const std::string at = "node " + named(node, n.name);
+  if (on_path_[std::size_t(node)]) fail(at + " is its own descendant (a cycle)");
+  if (depth > kMaxGltfDepth)
+    fail(at + " is nested more than " + std::to_string(kMaxGltfDepth) + " deep");
+  if (++visits_ > kMaxGltfNodeVisits)
+    fail("more than " + std::to_string(kMaxGltfNodeVisits) +
+         " node instances (nodes shared by many parents)");
+  const Mat4 world = parent * local_matrix(n, path_ + ": " + at);
+  if (n.camera >= 0 && !have_camera_) set_camera(node, n.camera, world);
+  if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
+    add_light(node, it->second, world);
+  if (n.mesh >= 0) {
+    if (std::size_t(n.mesh) >= model_.meshes.size())
+      fail(at + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
+           std::to_string(model_.meshes.size()) + " meshes)");
+    if (n.skin >= 0) warn_once("skin", "skins are not supported; meshes are drawn unskinned");
+    for (std::size_t p = 0; p < model_.meshes[std::size_t(n.mesh)].primitives.size(); ++p)
+      add_primitive(n.mesh, int(p), world);
+  }
+  on_path_[std::size_t(node)] = 1;
+  for (const int child : n.children) walk(child, world, depth + 1);
+  on_path_[std::size_t(node)] = 0;
+}
+
+void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world) {
+  const tinygltf::Mesh& gm = model_.meshes[std::size_t(mesh_index)];
+  const tinygltf::Primitive& prim = gm.primitives[std::size_t(prim_index)];
+  const std::string at =
+      "mesh " + named(mesh_index, gm.name) + " primitive " + std::to_string(prim_index);
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    warn_once("mode", at + ": mode " + std::to_string(mode) +
+                          " (points or lines) is skipped; rt2 draws triangles only");
+    return;
+  }
+  const auto attribute = [&](const char* name) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  if (++primitives_ > kMaxGltfPrimitives)
+    fail("more than " + std::to_string(kMaxGltfPrimitives) +
+         " primitive instances (meshes of nodes shared by many parents?)");
+  const int pos_index = attribute("POSITION");
+  if (pos_index < 0) fail(at + ": has no POSITION attribute");
+  const Accessor pos = accessor(pos_index, at + " POSITION", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
+  if (vertices_ + pos.count > kMaxGltfVertices)
+    fail("more than " + std::to_string(kMaxGltfVertices) + " vertices in all mesh instances");
+  vertices_ += pos.count;
+
+  Mesh mesh;
+  mesh.name = fs::path(path_).filename().string() + ":" + at;
+  mesh.positions.reserve(pos.count);
+  for (std::size_t i = 0; i < pos.count; ++i) {
+    const Vec3d p = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
+    if (!fits_float(p))
+      fail(at + ": POSITION " + std::to_string(i) + " is not a finite float (" +
+           fmt(pos.get(i, 0)) + " " + fmt(pos.get(i, 1)) + " " + fmt(pos.get(i, 2)) +
+           " in the world: " + fmt(p.x) + " " + fmt(p.y) + " " + fmt(p.z) + ")");
+    mesh.positions.push_back(to_vec4(p));
+  }
+  const double det = determinant3(world);
+  if (const int n_index = attribute("NORMAL"); n_index >= 0) {
+    const Accessor nrm = accessor(n_index, at + " NORMAL", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
+    if (nrm.count != pos.count)
+      fail(at + ": NORMAL has " + std::to_string(nrm.count) + " elements, POSITION " +
+           std::to_string(pos.count));
+    const Mat4 normal_matrix = cofactor(world);
+    const double sign = det < 0 ? -1.0 : 1.0;
+    mesh.normals.reserve(nrm.count);
+    for (std::size_t i = 0; i < nrm.count; ++i) {
+      Vec3d n = transform_vector(normal_matrix, {nrm.get(i, 0), nrm.get(i, 1), nrm.get(i, 2)});
+      n = normalized({n.x * sign, n.y * sign, n.z * sign});
+      if (!finite3(n)) {  // a zero normal, or a singular transform: flat shading
+        mesh.normals.clear();
+        warn_once("normals", at + ": a zero or non-finite normal; the primitive is shaded flat");
+        break;
+      }
+      mesh.normals.push_back(to_vec4(n));
+    }
+  }
+  if (const int t_index = attribute("TEXCOORD_0"); t_index >= 0) {
+    Accessor uv = accessor(t_index, at + " TEXCOORD_0",
+                           {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                           2);
+    if (uv.count != pos.count)
+      fail(at + ": TEXCOORD_0 has " + std::to_string(uv.count) + " elements, POSITION " +
+           std::to_string(pos.count));
+    uv.normalized = true;  // integer texture coordinates must be normalized (glTF 3.7.2.1)
+    mesh.texcoords.reserve(uv.count);
+    for (std::size_t i = 0; i < uv.count; ++i) {
+      const float u = float(uv.get(i, 0)), v = float(uv.get(i, 1));
+      if (!std::isfinite(u) || !std::isfinite(v))
+        fail(at + ": TEXCOORD_0 " + std::to_string(i) + " is not finite");
+      mesh.texcoords.push_back({u, 1.0f - v});  // glTF's image row 0 is v = 0; rt2's v = 1
+    }
+  }
+
+  // Corner indices: the indices accessor, or 0, 1, 2, ... without one.
+  std::vector<std::uint32_t> corners;
+  if (prim.indices >= 0) {
+    const Accessor idx =
+        accessor(prim.indices, at + " indices",
+                 {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                 1);
+    corners.reserve(idx.count);
+    for (std::size_t i = 0; i < idx.count; ++i) {
+      const double v = idx.get(i, 0);
+      if (!(v < double(pos.count)))
+        fail(at + ": index " + std::to_string(i) + " is " + fmt(v) + ", but there are only " +
+             std::to_string(pos.count) + " vertices");
+      corners.push_back(std::uint32_t(v));
+    }
+  } else {
+    corners.resize(pos.count);
+    for (std::size_t i = 0; i < pos.count; ++i) corners[i] = std::uint32_t(i);
+  }
+  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    // A mirroring transform (det < 0) turns the winding; glTF says to turn it back.
+    if (det < 0) std::swap(b, c);
+    mesh.faces.push_back({a, b, c});
+  };
+  const std::size_t n = corners.size();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (n % 3 != 0)
+      warn_once("leftover", at + ": " + std::to_string(n) +
+                                " corners is not a multiple of 3; the last are ignored");
+    for (std::size_t i = 0; i + 2 < n; i += 3) add(corners[i], corners[i + 1], corners[i + 2]);
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (std::size_t i = 0; i + 2 < n; ++i)
+      i % 2 ? add(corners[i + 1], corners[i], corners[i + 2])
+            : add(corners[i], corners[i + 1], corners[i + 2]);
+  } else {
+    for (std::size_t i = 1; i + 1 < n; ++i) add(corners[0], corners[i], corners[i + 1]);
+  }
+  mesh.face_materials.assign(mesh.faces.size(), material(prim.material));
+  scene_.degenerate_triangles += mesh.drop_degenerate();
+  if (!mesh.faces.empty()) scene_.meshes.push_back(std::move(mesh));
+}
+
+void GltfReader::set_camera(int node, int camera_index, const Mat4& world) {
+  const std::string at = "node " + named(node, model_.nodes[std::size_t(node)].name);
+  if (std::size_t(camera_index) >= model_.cameras.size())
+    fail(at + ": camera " + std::to_string(camera_index) + " does not exist (" +
+         std::to_string(model_.cameras.size()) + " cameras)");
+  const tinygltf::Camera& c = model_.cameras[std::size_t(camera_index)];
+  double fov = 60.0;
+  if (c.type == "perspective") {
+    fov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
+    if (!(fov > 0 && fov < 180))
+      fail("camera " + named(camera_index, c.name) + ": yfov " + fmt(c.perspective.yfov) +
+           " is not in (0, pi)");
+  } else {
+    warn_once("ortho", "camera " + named(camera_index, c.name) + " is " + one_line(c.type) +
+                           "; rendered as a perspective camera of 60 degrees");
+  }
+  const Vec3d pos = transform_point(world, {0, 0, 0});
+  const Vec3d dir = normalized(transform_vector(world, {0, 0, -1}));
+  const Vec3d up = normalized(transform_vector(world, {0, 1, 0}));
+  if (!finite3(pos) || !finite3(dir) || !finite3(up) || !fits_float(pos))
+    fail(at + ": its transform gives the camera no position, direction or up");
+  const vec4 d = to_vec4(dir), u = to_vec4(up);
+  const vec4 side = cross(d, u);
+  if (!(float(dot(side, side)) > 1e-12f)) fail(at + ": the camera's direction and up are parallel");
+  scene_.camera = Camera(to_vec4(pos), d, u, float(fov));
+  have_camera_ = true;
+}
+
+void GltfReader::add_light(int node, const tinygltf::Value& ext, const Mat4& world) {
+  if (!ext.IsObject() || !ext.Has("light")) return;
+  const tinygltf::Value& v = ext.Get("light");
+  const std::string at = "node " + named(node, model_.nodes[std::size_t(node)].name);
+  const int index = v.IsInt() ? v.Get<int>() : -1;
+  if (index < 0 || std::size_t(index) >= model_.lights.size())
+    fail(at + ": KHR_lights_punctual light " + (v.IsInt() ? std::to_string(index) : "?") +
+         " does not exist (" + std::to_string(model_.lights.size()) + " lights)");
+  const Vec3d pos = transform_point(world, {0, 0, 0});
+  const Vec3d dir = normalized(transform_vector(world, {0, 0, -1}));
+  if (!fits_float(pos)) fail(at + ": the light's position is not finite");
+  lights_.push_back({index, pos, dir});
+}
+
+// Lights, once the scene's extent is known. glTF gives point and spot lights in candela
+// (lm/sr) with inverse-square falloff, directional lights in lux (lm/m²); rt2's lights have
+// no falloff (rt2/light.h). A point light gets the intensity that gives, everywhere, the
+// illuminance the glTF light gives at the scene's centre: I / d², d the distance from the
+// light to the centre of the scene's bounds (at least R, half their diagonal, so that a light
+// inside the scene does not blow up). A directional light becomes a point light 1000 R away
+// against its direction, with its lux as intensity.
+void GltfReader::finish_lights() {
+  const Framing frame = framing_of(path_, scene_.bounds(), "scene");
+  for (const PendingLight& p : lights_) {
+    const tinygltf::Light& g = model_.lights[std::size_t(p.index)];
+    const std::string at = "light " + named(p.index, g.name);
+    Light l;
+    if (!g.color.empty()) {
+      if (g.color.size() != 3)
+        fail(at + ": color has " + std::to_string(g.color.size()) + " numbers, expected 3");
+      for (const double c : g.color)
+        if (!(c >= 0 && c <= 1e6)) fail(at + ": color holds " + fmt(c) + ", expected >= 0");
+      l.color = vec4(float(g.color[0]), float(g.color[1]), float(g.color[2]));
+    }
+    if (!(g.intensity >= 0 && g.intensity <= 1e30)) fail(at + ": intensity is " + fmt(g.intensity));
+    if (!(g.range >= 0 && std::isfinite(g.range))) fail(at + ": range is " + fmt(g.range));
+    if (g.type == "directional") {
+      if (!finite3(p.direction)) fail(at + ": its node gives it no direction");
+      warn_once("directional", at + " is directional; placed as a point light far away");
+      const float far = 1000.0f * frame.radius;
+      l.position = frame.center - to_vec4(p.direction) * far;
+      l.intensity = float(g.intensity);
+    } else {
+      if (g.type == "spot")
+        warn_once("spot", at + " is a spot light; rendered as a point light");
+      else if (g.type != "point")
+        fail(at + ": unknown type '" + one_line(g.type) + "'");
+      l.position = to_vec4(p.position);
+      const vec4 to_center = frame.center - l.position;
+      const float d = std::max(std::sqrt(float(dot(to_center, to_center))), frame.radius);
+      l.intensity = float(g.intensity / (double(d) * d));
+      if (g.range > 0) l.range = float(g.range);
+    }
+    scene_.lights.push_back(l);
+  }
+}
+
+Scene GltfReader::read() {
+  if (!model_.asset.version.starts_with("2."))
+    fail("asset.version is '" + one_line(model_.asset.version) + "'; rt2 reads glTF 2.0 only");
+  on_path_.assign(model_.nodes.size(), 0);
+  std::vector<int> roots;
+  if (!model_.scenes.empty()) {
+    const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (std::size_t(s) >= model_.scenes.size())
+      fail("scene " + std::to_string(s) + " does not exist (" +
+           std::to_string(model_.scenes.size()) + " scenes)");
+    roots = model_.scenes[std::size_t(s)].nodes;
+  } else {  // no scenes: every node that is no node's child
+    std::vector<char> child(model_.nodes.size(), 0);
+    for (const tinygltf::Node& n : model_.nodes)
+      for (const int c : n.children)
+        if (c >= 0 && std::size_t(c) < child.size()) child[std::size_t(c)] = 1;
+    for (std::size_t i = 0; i < child.size(); ++i)
+      if (!child[i]) roots.push_back(int(i));
+  }
+  for (const int r : roots) walk(r, kIdentity, 0);
+  if (!model_.animations.empty()) warn_once("anim", "animations are ignored");
+  if (scene_.meshes.empty())
+    fail(scene_.degenerate_triangles
+             ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"
+             : "no triangles in the scene");
+  const Framing frame = framing_of(path_, scene_.bounds(), "scene");
+  if (!have_camera_) scene_.camera = framing_camera(frame);
+  finish_lights();
+  if (scene_.lights.empty()) scene_.lights.push_back(framing_light(frame));
+  validate(path_, scene_);
+  return std::move(scene_);
+}
+
+}  // namespace
+
+Scene read_gltf_scene(const std::string& path) { return GltfReader(path).read(); }
+
+}  // namespace rt2::io

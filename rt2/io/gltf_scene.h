@@ -1,0 +1,33 @@
+// rt2/io/gltf_scene.h — a glTF 2.0 file (.gltf or .glb) into a Scene (internal).
+//
+// Part of the implementation of rt2/scene_io.h, not an API: rt2::load_scene and
+// rt2::load_gltf_scene call read_gltf_scene through their `guarded` wrapper, which makes
+// sure that only rt2::Error, with a one-line message, leaves them. tinygltf parses the JSON
+// and the buffers; everything rt2 takes from the parsed model (accessors, node graph,
+// materials, cameras, KHR_lights_punctual) is checked here before use. What is read and how
+// it maps is documented in scenes/FORMAT.md.
+#pragma once
+
+#include <string>
+
+#include "rt2/scene.h"
+
+namespace rt2::io {
+
+// Limits beyond which input is a mistake, not a scene.
+constexpr std::size_t kMaxGltfBytes = 2047ull << 20;  // a .gltf, .glb or buffer file
+constexpr int kMaxGltfDepth = 1024;                   // node hierarchy depth
+constexpr std::size_t kMaxGltfNodeVisits = 1u << 18;  // node instances (a DAG can repeat)
+constexpr std::size_t kMaxGltfPrimitives = 1u << 16;  // primitive instances (one Mesh each)
+constexpr std::size_t kMaxGltfVertices = 1u << 26;    // all mesh instances together
+
+// Reads the glTF 2.0 file `path` (JSON or binary, told apart by its first bytes, "glTF"
+// for binary). Images are not decoded: a file image becomes a TextureDesc with its path
+// (relative to the glTF's folder, checked to be a regular file), an embedded one its bytes.
+// The default scene's nodes are walked with their transforms; primitives become meshes,
+// materials PBR materials, the first camera the scene's camera, KHR_lights_punctual lights
+// point lights; without a camera or lights the scene is framed as a bare OBJ is. The result
+// has passed Scene::validate(). Throws rt2::Error "path: ..." naming the element at fault.
+Scene read_gltf_scene(const std::string& path);
+
+}  // namespace rt2::io
