@@ -778,6 +778,30 @@ def gltf():
                "extensions": {"KHR_lights_punctual": {"light": 0}}}]))
 
 
+# ---- physically based materials and environments ------------------------------------------
+
+def pbr():
+    """model = "pbr" materials and [environment]: keys of the other model, ranges, files."""
+    for name, toml, message, line in [
+        ("pbr_phong_key_in_pbr", CAMERA + '[materials.m]\nmodel = "pbr"\nshininess = 10\n',
+         "unknown key 'shininess' in materials.m", 6),
+        ("pbr_pbr_key_in_phong", CAMERA + "[materials.m]\ndiffuse = [1, 1, 1]\nmetallic = 1\n",
+         "unknown key 'metallic' in materials.m", 6),
+        ("pbr_unknown_model", CAMERA + '[materials.m]\nmodel = "blinn"\n',
+         'materials.m.model must be "phong" or "pbr"', 5),
+        ("pbr_metallic_out_of_range", CAMERA + '[materials.m]\nmodel = "pbr"\nmetallic = 1.5\n',
+         "materials.m.metallic must be in [0, 1]", 6),
+        ("pbr_texture_missing",
+         CAMERA + '[materials.m]\nmodel = "pbr"\nbase_color_texture = "textures/none.png"\n',
+         "none.png': no such file", 6),
+        ("environment_sun_zero", CAMERA + "[environment]\nsun_direction = [0, 0, 0]\n",
+         "environment.sun_direction must not be zero", 5),
+        ("environment_image_is_a_directory", CAMERA + '[environment]\nimage = "."\n',
+         "is not a readable file", 5),
+    ]:
+        scene_error(name, toml, message, line)
+
+
 def main():
     malformed_toml()
     fuzz_found()
@@ -790,6 +814,7 @@ def main():
     numbers()
     keys()
     paths()
+    pbr()
     sizes()
     gltf()
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "rt2/image_io.h"
 #include "tests/rt2/cli_fixture.h"
@@ -206,6 +207,55 @@ TEST_F(Cli, AnObjAloneIsFramedAndRendered) {
   const Outcome r = run(std::string(kTiny) + " --scene " + path("tri.obj") + " --output " + path("t.png"));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("t.png")));
+}
+
+TEST_F(Cli, BadToneCurveOrExposureFailsNamingTheOption) {
+  expect_clean_failure(run(std::string(kTiny) + " --tonemap bogus --output " + path("x.png")), "--tonemap");
+  expect_clean_failure(run(std::string(kTiny) + " --exposure 100 --output " + path("x.png")), "exposure");
+  expect_clean_failure(run(std::string(kTiny) + " --exposure nan"), "exposure");
+  EXPECT_EQ(files_other_than_streams(), 0u);
+}
+
+// The tone curve changes display formats only: an EXR keeps the linear values.
+TEST_F(Cli, ToneMappedRendersWritePngAndExrAndOnlyThePngChanges) {
+  for (const char* curve : {"none", "aces"})
+    for (const char* ext : {".png", ".exr"}) {
+      const std::string out = path(std::string(curve) + ext);
+      const Outcome r = run(std::string(kTiny) + " --tonemap " + curve + " --exposure 1 --output " + out);
+      ASSERT_EQ(r.status, 0) << curve << ext << ": " << r.err;
+      ASSERT_TRUE(fs::exists(out)) << out;
+    }
+  EXPECT_EQ(rt2::read_image(path("none.exr")).rgb, rt2::read_image(path("aces.exr")).rgb);
+  EXPECT_NE(rt2::read_image(path("none.png")).rgb, rt2::read_image(path("aces.png")).rgb);
+}
+
+TEST_F(Cli, AMissingEnvironmentImageFailsNamingItAndWritesNothing) {
+  const Outcome r = run(std::string(kTiny) + " --environment " + path("missing.hdr") + " --output " +
+                        path("x.exr") + " --stats " + path("s.json"));
+  expect_clean_failure(r, path("missing.hdr"));
+  EXPECT_EQ(files_other_than_streams(), 0u);
+}
+
+// A sphere in the middle of the view: the corners see the background, black without an
+// environment and the sky's light with --environment sky.
+TEST_F(Cli, EnvironmentSkyLightsTheBackground) {
+  write("ball.toml",
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[materials.m]\n"
+        "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n"
+        "[[lights]]\nposition = [2, 3, 4]\n");
+  const std::string base = std::string(kTiny) + " --scene " + path("ball.toml") + " --output ";
+  const Outcome sky = run(base + path("sky.exr") + " --environment sky");
+  ASSERT_EQ(sky.status, 0) << sky.err;
+  ASSERT_EQ(run(base + path("black.exr")).status, 0);
+  const rt2::Image lit = rt2::read_image(path("sky.exr")), dark = rt2::read_image(path("black.exr"));
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{23, 0}, std::pair{0, 15}, std::pair{23, 15}})
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(lit.pixel(x, y)[c], 0.0f) << x << "," << y;
+      EXPECT_EQ(dark.pixel(x, y)[c], 0.0f) << x << "," << y;
+    }
+  // and the built-in scene renders with it
+  const Outcome builtin = run(std::string(kTiny) + " --environment sky --output " + path("b.png"));
+  ASSERT_EQ(builtin.status, 0) << builtin.err;
 }
 
 // tinyobjloader kept every material of an MTL library, some 2 KB each: 2.3 GB of memory for
