@@ -122,6 +122,16 @@ inline PbrSurface pbr_surface(const vec4& base_color, float metallic, float roug
   return s;
 }
 
+// The same with a transmission (KHR_materials_transmission): the share `transmission`
+// (1 - metallic) of what is not reflected is refracted instead of diffused.
+inline PbrSurface pbr_surface(const vec4& base_color, float metallic, float roughness,
+                              float transmission) {
+  PbrSurface s = pbr_surface(base_color, metallic, roughness);
+  const float t = transmission * (1.0f - s.metallic);
+  if (t > 0.0f) set_diffuse(s, base_color * (1.0f - t));
+  return s;
+}
+
 // f(l, v), the BRDF itself (not times n·l): kD diffuse / pi + D V F, F = F(h·v), kD as
 // above. n, v, l unit length; 0 when l or v is at or below the surface. `e_v` is
 // specular_albedo(s, n·v), which a caller shading many lights computes once. Reciprocal

@@ -30,6 +30,10 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
     }
   t = Clock::now();
   if (pbr) split_sum(0.5f, 0.5f);  // the table is made here, not in the first frame
+  c.pbr_surfaces.resize(c.materials.size());
+  for (std::size_t i = 0; i < c.materials.size(); ++i)
+    if (const Material& m = c.materials[i]; m.model == Shading::pbr)
+      c.pbr_surfaces[i] = pbr_surface(m.base_color, m.metallic, m.roughness, m.transmission);
   c.times.brdf_table_ms = ms_since(t);
   t = Clock::now();
   c.textures = TextureSet(scene.textures);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/brdf.h"
 #include "rt2/environment.h"
 #include "rt2/light.h"
 #include "rt2/light_bvh.h"
@@ -26,6 +27,9 @@ namespace rt2 {
 struct CompiledScene {
   Accel accel;
   std::vector<Material> materials;
+  // Per material, its physically based surface (brdf.h) when it is pbr and has no texture
+  // (the same at every point: prepared once here instead of per shaded point).
+  std::vector<PbrSurface> pbr_surfaces;
   std::vector<Light> lights;             // where they are this frame
   LightBvh light_bvh;                    // over `lights`' spheres of influence
   std::vector<LightPath> light_paths;    // where move_lights takes each light

@@ -2,6 +2,7 @@
 #include "rt2/environment.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -18,8 +19,6 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 
 // The sizes and sample counts documented in environment.h.
-constexpr int kIrradianceWidth = 64;
-constexpr int kIrradianceHeight = 32;
 constexpr int kMaxSpecularWidth = 512;  // level 0
 constexpr int kMinSpecularWidth = 32;   // the roughest levels
 constexpr std::uint32_t kSpecularSamples = 128;
@@ -27,7 +26,6 @@ constexpr int kSkyWidth = 256;
 constexpr int kSkyHeight = 128;
 
 // x clamped to [0, 1], NaN to 0 (a lookup must never index with NaN).
-float clamp01(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; }
 
 void check_finite_nonnegative(const char* what, float value) {
   if (!(std::isfinite(value) && value >= 0.0f))
@@ -95,34 +93,31 @@ struct MipChain {
   }
 };
 
-// E(n) / pi at every texel of a kIrradianceWidth x kIrradianceHeight map, by quadrature
-// over the source resampled to that size (see environment.h for the normalisation).
-EquirectMap convolve_irradiance(const EquirectMap& source) {
-  const EquirectMap small = resample(source, kIrradianceWidth, kIrradianceHeight);
-  std::vector<vec4> dirs(small.texels.size());
-  std::vector<float> solid_angles(small.texels.size());
-  for (int y = 0; y < small.height; ++y)
-    for (int x = 0; x < small.width; ++x) {
-      const std::size_t i = std::size_t(y) * std::size_t(small.width) + std::size_t(x);
-      dirs[i] = small.texel_direction(x, y);
-      solid_angles[i] = texel_solid_angle(y, small.width, small.height);
-    }
-  EquirectMap out(kIrradianceWidth, kIrradianceHeight);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int y = 0; y < out.height; ++y) {
-    for (int x = 0; x < out.width; ++x) {
-      const vec4 n = out.texel_direction(x, y);
-      vec4 sum;
-      float weight = 0.0f;
-      for (std::size_t i = 0; i < dirs.size(); ++i) {
-        const float w = std::max(float(dot(n, dirs[i])), 0.0f) * solid_angles[i];
-        sum += small.texels[i] * w;
-        weight += w;
-      }
-      out.at(x, y) = sum * (1.0f / weight);
+// E(n) / pi of the source as 9 spherical-harmonic coefficients: the source's radiance
+// projected on bands 0 ... 2 by quadrature over its texels (world directions, the rotation
+// applied), each band then convolved with the clamped cosine (A_0 = pi, A_1 = 2 pi / 3,
+// A_2 = pi / 4) and divided by pi.
+IrradianceSh project_irradiance(const EquirectMap& source, float u_shift) {
+  std::array<double, 27> sum{};
+  for (int y = 0; y < source.height; ++y) {
+    const float solid_angle = texel_solid_angle(y, source.width, source.height);
+    for (int x = 0; x < source.width; ++x) {
+      // the world direction whose lookup (map_uv adds u_shift) is this texel
+      const vec4 d = uv_to_direction({(float(x) + 0.5f) / float(source.width) - u_shift,
+                                      (float(y) + 0.5f) / float(source.height)});
+      const std::array<float, 9> b = sh9(d);
+      const vec4& l = source.at(x, y);
+      for (int k = 0; k < 9; ++k)
+        for (int c = 0; c < 3; ++c) sum[std::size_t(3 * k + c)] += double(l[c] * b[std::size_t(k)] * solid_angle);
     }
   }
-  return out;
+  IrradianceSh sh;
+  for (int k = 0; k < 9; ++k) {
+    const double band = k == 0 ? 1.0 : (k < 4 ? 2.0 / 3.0 : 0.25);
+    sh.c[std::size_t(k)] = vec4(float(sum[std::size_t(3 * k)] * band), float(sum[std::size_t(3 * k + 1)] * band),
+                                float(sum[std::size_t(3 * k + 2)] * band));
+  }
+  return sh;
 }
 
 // One GGX sample of a specular level, in the local frame of n = v = r (n along +z).
@@ -210,7 +205,7 @@ Environment Environment::uniform(const vec4& color) {
   Environment env;
   env.source_ = EquirectMap(1, 1);
   env.source_.at(0, 0) = color;
-  env.irradiance_ = env.source_;
+  env.irradiance_.c[0] = color * (1.0f / 0.282095f);  // band 0 alone
   env.specular_.assign(kSpecularLevels, env.source_);
   return env;
 }
@@ -272,7 +267,7 @@ Environment Environment::sky(const vec4& sun_direction, float intensity, float r
 
 void Environment::prefilter() {
   const auto start = std::chrono::steady_clock::now();
-  irradiance_ = convolve_irradiance(source_);
+  irradiance_ = project_irradiance(source_, u_shift_);
   // Level 0, the mirror: the source itself, at most kMaxSpecularWidth wide.
   int w = source_.width, h = source_.height;
   if (w > kMaxSpecularWidth) {
@@ -290,25 +285,6 @@ void Environment::prefilter() {
   }
   prefilter_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-Uv Environment::map_uv(const vec4& d) const {
-  Uv uv = direction_to_uv(d);
-  uv.u += u_shift_;
-  return uv;
-}
-
-vec4 Environment::radiance(const vec4& dir) const { return source_.bilinear(map_uv(dir)); }
-
-vec4 Environment::irradiance(const vec4& n) const { return irradiance_.bilinear(map_uv(n)); }
-
-vec4 Environment::specular(const vec4& r, float roughness) const {
-  const Uv uv = map_uv(r);
-  const float x = clamp01(roughness) * float(kSpecularLevels - 1);
-  const int k = std::min(int(x), kSpecularLevels - 2);
-  const vec4 a = specular_[std::size_t(k)].bilinear(uv);
-  const vec4 b = specular_[std::size_t(k) + 1].bilinear(uv);
-  return a + (b - a) * (x - float(k));
 }
 
 }  // namespace rt2

@@ -15,10 +15,10 @@
 //
 // What the prefiltered maps hold (all linear RGB):
 // * irradiance: E(n) / pi = (1/pi) integral of L(w) max(0, n·w) dw, so that a Lambert
-//   surface of albedo c reflects c irradiance(n); a constant environment c gives c.
-//   Computed by direct quadrature over a 64 x 32 solid-angle-weighted copy of the source,
-//   normalised by the quadrature's own integral of the cosine (which makes a constant map
-//   exact and removes the discretisation's bias from every other).
+//   surface of albedo c reflects c irradiance(n); a constant environment c gives c. Held
+//   as spherical harmonics (IrradianceSh below), projected from the source by quadrature.
+//   (A 64 x 32 map convolved by quadrature, the first version, cost a direction-to-uv
+//   conversion and a bilinear lookup per shaded point, ~30 ns, twice the harmonics.)
 // * specular: kSpecularLevels maps at roughness k / (kSpecularLevels - 1): level 0 is the
 //   source (at most 512 texels wide), level k halves the resolution of level k-1 (not
 //   below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
@@ -30,6 +30,8 @@
 //   term: brdf_lut.h (one table per process, shared with brdf.h's diffuse term).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -37,6 +39,25 @@
 #include "rt2/ray.h"
 
 namespace rt2 {
+
+// E(n) / pi as 9 spherical-harmonic coefficients (RGB): the irradiance environment map of
+// Ramamoorthi and Hanrahan 2001. Irradiance is the radiance convolved with the clamped
+// cosine, whose bands above 2 carry under 1 % of it: 9 numbers per channel represent it
+// within a few per cent of the exact convolution everywhere (exactly for light that varies
+// linearly over the sphere: a constant sky, a bright upper hemisphere), and a lookup is a
+// few multiply-adds, no trigonometry and no memory beyond 9 vectors.
+// The real spherical harmonics of bands 0 ... 2 at unit direction d, in the order of
+// IrradianceSh::c (Ramamoorthi and Hanrahan 2001, eq. 3).
+inline std::array<float, 9> sh9(const vec4& d) {
+  const float x = d[0], y = d[1], z = d[2];
+  return {0.282095f,          0.488603f * y,        0.488603f * z,
+          0.488603f * x,      1.092548f * x * y,    1.092548f * y * z,
+          0.315392f * (3.0f * z * z - 1.0f), 1.092548f * x * z, 0.546274f * (x * x - y * y)};
+}
+
+struct IrradianceSh {
+  std::array<vec4, 9> c{};  // bands 0, 1 (y, z, x), 2 (xy, yz, 3z^2 - 1, xz, x^2 - y^2)
+};
 
 class Environment {
  public:
@@ -60,12 +81,24 @@ class Environment {
   static Environment sky(const vec4& sun_direction, float intensity, float rotation_degrees);
 
   // The radiance arriving from direction `dir` (unit), i.e. the background: the source map.
-  vec4 radiance(const vec4& dir) const;
+  vec4 radiance(const vec4& dir) const { return source_.bilinear(map_uv(dir)); }
   // E(n) / pi for the unit normal n (see above).
-  vec4 irradiance(const vec4& n) const;
+  vec4 irradiance(const vec4& n) const {
+    const std::array<float, 9> b = sh9(n);
+    vec4 e = irradiance_.c[0] * b[0];
+    for (std::size_t k = 1; k < 9; ++k) e += irradiance_.c[k] * b[k];
+    return e;
+  }
   // Prefiltered radiance around the unit reflection direction r; roughness (perceptual) in
   // [0, 1], clamped, interpolated linearly between the two nearest levels.
-  vec4 specular(const vec4& r, float roughness) const;
+  vec4 specular(const vec4& r, float roughness) const {
+    const Uv uv = map_uv(r);
+    const float x = std::clamp(roughness, 0.0f, 1.0f) * float(kSpecularLevels - 1);
+    const int k = std::min(int(x), kSpecularLevels - 2);
+    const vec4 a = specular_[std::size_t(k)].bilinear(uv);
+    const vec4 b = specular_[std::size_t(k) + 1].bilinear(uv);
+    return a + (b - a) * (x - float(k));
+  }
 
   // Wall-clock seconds the factory spent prefiltering.
   double prefilter_seconds() const { return prefilter_seconds_; }
@@ -74,7 +107,6 @@ class Environment {
 
   // The resolution of the maps, for reports and tests.
   const EquirectMap& source_map() const { return source_; }
-  const EquirectMap& irradiance_map() const { return irradiance_; }
   const EquirectMap& specular_map(int level) const { return specular_[std::size_t(level)]; }
 
  private:
@@ -82,10 +114,14 @@ class Environment {
   // Prefilters everything from source_ (with the rotation already set).
   void prefilter();
   // u in map space of the world direction d: the rotation is a shift in u.
-  Uv map_uv(const vec4& d) const;
+  Uv map_uv(const vec4& d) const {
+    Uv uv = direction_to_uv(d);
+    uv.u += u_shift_;
+    return uv;
+  }
 
   EquirectMap source_;
-  EquirectMap irradiance_;
+  IrradianceSh irradiance_;
   std::vector<EquirectMap> specular_;  // kSpecularLevels
   float u_shift_ = 0.0f;               // rotation / 360
   double prefilter_seconds_ = 0.0;

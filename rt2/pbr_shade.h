@@ -82,36 +82,35 @@ inline vec4 normal_mapped(const Accel& acc, const SurfacePoint& s, const vec4& t
 // from the camera to the hit (the pixel cone's width there is travelled x pixel_angle).
 inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const SurfacePoint& s,
                           const vec4& view, float travelled, float pixel_angle) {
+  if (m.base_color_texture == kNoTexture && m.metallic_roughness_texture == kNoTexture &&
+      m.emissive_texture == kNoTexture && m.normal_texture == kNoTexture &&
+      m.roughness_texture == kNoTexture && m.metallic_texture == kNoTexture)
+    return PbrPoint{sc.pbr_surfaces[s.material], s.ns, m.emissive, m.base_color,
+                    m.transmission * (1.0f - m.metallic)};
   vec4 base = m.base_color, emissive = m.emissive;
   float metallic = m.metallic, roughness = m.roughness;
   vec4 n = s.ns;
-  if (m.base_color_texture != kNoTexture || m.metallic_roughness_texture != kNoTexture ||
-      m.emissive_texture != kNoTexture || m.normal_texture != kNoTexture ||
-      m.roughness_texture != kNoTexture || m.metallic_texture != kNoTexture) {
-    const TexturePoint tp = texcoords_at(sc.accel, s);
-    const float width = travelled * pixel_angle * tp.per_world;
-    const auto sample = [&](std::uint32_t t) { return sc.textures.sample(t, tp.u, tp.v, width); };
-    if (m.base_color_texture != kNoTexture) base *= sample(m.base_color_texture);
-    if (m.emissive_texture != kNoTexture) emissive *= sample(m.emissive_texture);
-    if (m.metallic_roughness_texture != kNoTexture) {
-      const vec4 mr = sample(m.metallic_roughness_texture);
-      roughness = std::clamp(roughness * float(mr[1]), 0.0f, 1.0f);
-      metallic = std::clamp(metallic * float(mr[2]), 0.0f, 1.0f);
-    }
-    if (m.roughness_texture != kNoTexture)
-      roughness = std::clamp(roughness * float(sample(m.roughness_texture)[0]), 0.0f, 1.0f);
-    if (m.metallic_texture != kNoTexture)
-      metallic = std::clamp(metallic * float(sample(m.metallic_texture)[0]), 0.0f, 1.0f);
-    if (m.normal_texture != kNoTexture && prim_tag(s.prim) == kTriangleTag &&
-        !sc.accel.tri_texcoords.empty()) {
-      const vec4 mapped = normal_mapped(sc.accel, s, sample(m.normal_texture), m.normal_scale);
-      if (dot(mapped, view) > 0.0f) n = mapped;  // a mapped normal facing away is ignored
-    }
+  const TexturePoint tp = texcoords_at(sc.accel, s);
+  const float width = travelled * pixel_angle * tp.per_world;
+  const auto sample = [&](std::uint32_t t) { return sc.textures.sample(t, tp.u, tp.v, width); };
+  if (m.base_color_texture != kNoTexture) base *= sample(m.base_color_texture);
+  if (m.emissive_texture != kNoTexture) emissive *= sample(m.emissive_texture);
+  if (m.metallic_roughness_texture != kNoTexture) {
+    const vec4 mr = sample(m.metallic_roughness_texture);
+    roughness = std::clamp(roughness * float(mr[1]), 0.0f, 1.0f);
+    metallic = std::clamp(metallic * float(mr[2]), 0.0f, 1.0f);
   }
-  const float t = m.transmission * (1.0f - metallic);
-  PbrPoint p{pbr_surface(base, metallic, roughness), n, emissive, base, t};
-  if (t > 0.0f) set_diffuse(p.surface, base * (1.0f - t));  // what is transmitted is not diffused
-  return p;
+  if (m.roughness_texture != kNoTexture)
+    roughness = std::clamp(roughness * float(sample(m.roughness_texture)[0]), 0.0f, 1.0f);
+  if (m.metallic_texture != kNoTexture)
+    metallic = std::clamp(metallic * float(sample(m.metallic_texture)[0]), 0.0f, 1.0f);
+  if (m.normal_texture != kNoTexture && prim_tag(s.prim) == kTriangleTag &&
+      !sc.accel.tri_texcoords.empty()) {
+    const vec4 mapped = normal_mapped(sc.accel, s, sample(m.normal_texture), m.normal_scale);
+    if (dot(mapped, view) > 0.0f) n = mapped;  // a mapped normal facing away is ignored
+  }
+  return PbrPoint{pbr_surface(base, metallic, roughness, m.transmission), n, emissive, base,
+                  m.transmission * (1.0f - metallic)};
 }
 
 // Stage 3 for one physically based hit: emission and environment light into the sample's
