@@ -4,7 +4,12 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
+#include <vector>
 
 #include "rt2/image_codec.h"
 
@@ -15,9 +20,12 @@ using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
+// OIIO's messages on one line, and short: a broken file can make it repeat the same
+// complaint for every tile it tried.
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
   while (!s.empty() && s.back() == ' ') s.pop_back();
+  if (s.size() > 200) s = s.substr(0, 200) + " ...";
   return s.empty() ? "unknown error" : s;
 }
 
@@ -66,8 +74,8 @@ std::string encode(const std::string& extension, const float* rgb, int width, in
   return "";
 }
 
-std::string decode(const std::string& path, std::vector<float>& rgb, int& width, int& height,
-                   bool& srgb) {
+std::string decode_loudly(const std::string& path, std::vector<float>& rgb, int& width,
+                          int& height, bool& srgb) {
   auto in = ImageInput::open(path);
   if (!in) return one_line(OIIO::geterror());
   const ImageSpec& spec = in->spec();
@@ -89,6 +97,34 @@ std::string decode(const std::string& path, std::vector<float>& rgb, int& width,
   return "";
 }
 
+// Runs `f` with the process's stderr pointed at /dev/null: libpng and libjpeg print their
+// own complaints there before OIIO reports the error rt2 turns into its one line. Only for
+// what runs before or after rendering, on one thread (file descriptors are per process).
+template <typename F>
+auto quietly(F&& f) {
+  std::fflush(stderr);
+  const int saved = ::dup(2);
+  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (saved >= 0 && null >= 0) ::dup2(null, 2);
+  if (null >= 0) ::close(null);
+  struct Restore {
+    int saved;
+    ~Restore() {
+      std::fflush(stderr);
+      if (saved >= 0) {
+        ::dup2(saved, 2);
+        ::close(saved);
+      }
+    }
+  } restore{saved};
+  return f();
+}
+
+std::string decode(const std::string& path, std::vector<float>& rgb, int& width, int& height,
+                   bool& srgb) {
+  return quietly([&] { return decode_loudly(path, rgb, width, height, srgb); });
+}
+
 OIIO::TextureSystem* system_of(void* s) { return static_cast<OIIO::TextureSystem*>(s); }
 
 void* texture_system_create() {
@@ -103,18 +139,34 @@ void texture_system_destroy(void* s) { OIIO::TextureSystem::destroy(system_of(s)
 
 void* texture_open(void* s, const std::string& path, int& channels, std::string& why) {
   OIIO::TextureSystem* ts = system_of(s);
-  OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
-  ImageSpec spec;
-  if (!h || !ts->get_imagespec(h, nullptr, 0, spec)) {
-    why = one_line(ts->geterror());
-    return nullptr;
-  }
-  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
-    why = "the image has no pixels";
-    return nullptr;
-  }
-  channels = spec.nchannels;
-  return h;
+  return quietly([&]() -> void* {
+    OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
+    ImageSpec spec;
+    if (!h || !ts->get_imagespec(h, nullptr, 0, spec)) {
+      why = one_line(ts->geterror());
+      return nullptr;
+    }
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
+      why = "the image has no pixels";
+      return nullptr;
+    }
+    // Read every texel of the finest level now, a strip of rows at a time, so that a file
+    // truncated or corrupt past its header is an error here and not black texels (and a
+    // complaint per tile) while rendering; the cache keeps what it read.
+    OIIO::TextureOpt opt;
+    const int rows = std::max(1, (1 << 22) / std::max(1, spec.width * spec.nchannels));
+    std::vector<unsigned char> strip(std::size_t(spec.width) * std::size_t(rows) *
+                                     std::size_t(spec.nchannels));
+    for (int y = 0; y < spec.height; y += rows)
+      if (!ts->get_texels(h, ts->get_perthread_info(), opt, 0, spec.x, spec.x + spec.width,
+                          spec.y + y, spec.y + std::min(spec.height, y + rows), 0, 1, 0,
+                          spec.nchannels, TypeDesc::UINT8, strip.data())) {
+        why = one_line(ts->geterror());
+        return nullptr;
+      }
+    channels = spec.nchannels;
+    return h;
+  });
 }
 
 void texture_sample(void* s, void* handle, int nchannels, float u, float v, float dsdx,

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -184,8 +185,20 @@ TEST(Texture, UnreadableImagesAreOneLineErrorsStartingWithTheirPath) {
   const std::string garbage = dir.write("garbage.png", "this is not a PNG at all\n");
   const std::string folder = dir.path("folder.png");
   fs::create_directories(folder);
+  // a whole header and the first rows, the rest cut off: an error when the scene is
+  // compiled, not black texels while rendering
+  Image big(256, 256);
+  for (std::size_t i = 0; i < big.rgb.size(); ++i) big.rgb[i] = float((i * 7919) % 256) / 255.0f;
+  const std::string whole = dir.path("whole.png");
+  write_image(whole, big);
+  std::string bytes;
+  {
+    std::ifstream in(whole, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string truncated = dir.write("truncated.png", bytes.substr(0, bytes.size() / 3));
   for (const TextureDesc& t : {TextureDesc{missing, {}, true}, TextureDesc{garbage, {}, true},
-                               TextureDesc{folder, {}, false},
+                               TextureDesc{folder, {}, false}, TextureDesc{truncated, {}, true},
                                TextureDesc{"y.glb:image 3", "\x89PNG\r\n\x1a\ngarbage", true}}) {
     SCOPED_TRACE(t.path);
     // after a good texture, so that what was opened before is released
