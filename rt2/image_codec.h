@@ -35,7 +35,8 @@ struct ImageCodec {
 
   // Textures through OIIO's TextureSystem (rt2/texture.h): mip-mapped (made on first use
   // for files that have no mip levels), tiled and cached, filtered over a footprint.
-  // A system of its own (not OIIO's shared one); destroyed by texture_system_destroy.
+  // OIIO's shared system (see image_codec_oiio.cpp for why); texture_system_destroy lets go
+  // of it.
   void* (*texture_system_create)();
   void (*texture_system_destroy)(void* system);
   // A handle for the image file `path`, checked to open, and its channel count; nullptr and

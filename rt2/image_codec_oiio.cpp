@@ -127,19 +127,30 @@ std::string decode(const std::string& path, std::vector<float>& rgb, int& width,
 
 OIIO::TextureSystem* system_of(void* s) { return static_cast<OIIO::TextureSystem*>(s); }
 
+// OIIO's shared TextureSystem, set up once. Not one of its own per TextureSet: OIIO 2.4's
+// TextureSystem::destroy frees a private system through the wrong type (AddressSanitizer:
+// new-delete-type-mismatch), and the shared one is never freed before exit. Its cache holds
+// at most max_memory_MB whatever the number of scenes a process compiles.
 void* texture_system_create() {
-  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(/*shared=*/false);
-  ts->attribute("automip", 1);        // mip levels for plain PNG/JPEG files, made in memory
-  ts->attribute("autotile", 64);      // and tiles, so a large image is read in pieces
-  ts->attribute("max_memory_MB", 1024.0f);
+  static OIIO::TextureSystem* const ts = [] {
+    OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/true);
+    t->attribute("automip", 1);    // mip levels for plain PNG/JPEG files, made in memory
+    t->attribute("autotile", 64);  // and tiles, so a large image is read in pieces
+    t->attribute("max_memory_MB", 1024.0f);
+    return t;
+  }();
   return ts;
 }
 
-void texture_system_destroy(void* s) { OIIO::TextureSystem::destroy(system_of(s)); }
+// A TextureSet's files stay in the shared cache until a later texture_open of the same name
+// invalidates them.
+void texture_system_destroy(void*) {}
 
 void* texture_open(void* s, const std::string& path, int& channels, std::string& why) {
   OIIO::TextureSystem* ts = system_of(s);
   return quietly([&]() -> void* {
+    // a file of this name read before (by an earlier scene) may have changed since
+    ts->invalidate(OIIO::ustring(path), /*force=*/true);
     OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
     ImageSpec spec;
     if (!h || !ts->get_imagespec(h, nullptr, 0, spec)) {
