@@ -214,7 +214,7 @@ TEST(Texture, UnreadableImagesAreOneLineErrorsStartingWithTheirPath) {
     SCOPED_TRACE(t.path);
     // OIIO 2.4's PNG reader leaks a copy of its error message when libpng fails inside a
     // file that starts like a PNG (libpng's longjmp skips its destructor): not rt2's to free.
-    const LeakCheckOff oiio_leaks;
+    [[maybe_unused]] const LeakCheckOff oiio_leaks;
     // after a good texture, so that what was opened before is released
     const std::string msg =
         error_of([&] { const TextureSet set({TextureDesc{good, {}, true}, t}); });
