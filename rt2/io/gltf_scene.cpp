@@ -304,7 +304,7 @@ class GltfReader {
   Accessor accessor(int index, const std::string& what, std::initializer_list<int> types,
                     int components) const;
 
-  void walk(int node, const Mat4& parent, int depth);
+  void walk(int root, const Mat4& parent);
   void add_primitive(int mesh_index, int prim_index, const Mat4& world);
   void set_camera(int node, int camera_index, const Mat4& world);
   void add_light(int node, const tinygltf::Value& ext, const Mat4& world);
@@ -564,33 +564,55 @@ Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
   return t * r * s;
 }
 
-void GltfReader::walk(int node, const Mat4& parent, int depth) {
-  if (node < 0 || std::size_t(node) >= model_.nodes.size())
-    fail("node " + std::to_string(node) + " does not exist (" +
-         std::to_string(model_.nodes.size()) + " nodes)");
-  const tinygltf::Node& n = model_.nodes[std::size_t(node)];
-  const std::string at = "node " + named(node, n.name);
-  if (on_path_[std::size_t(node)]) fail(at + " is its own descendant (a cycle)");
-  if (depth > kMaxGltfDepth)
-    fail(at + " is nested more than " + std::to_string(kMaxGltfDepth) + " deep");
-  if (++visits_ > kMaxGltfNodeVisits)
-    fail("more than " + std::to_string(kMaxGltfNodeVisits) +
-         " node instances (nodes shared by many parents)");
-  const Mat4 world = parent * local_matrix(n, path_ + ": " + at);
-  if (n.camera >= 0 && !have_camera_) set_camera(node, n.camera, world);
-  if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
-    add_light(node, it->second, world);
-  if (n.mesh >= 0) {
-    if (std::size_t(n.mesh) >= model_.meshes.size())
-      fail(at + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
-           std::to_string(model_.meshes.size()) + " meshes)");
-    if (n.skin >= 0) warn_once("skin", "skins are not supported; meshes are drawn unskinned");
-    for (std::size_t p = 0; p < model_.meshes[std::size_t(n.mesh)].primitives.size(); ++p)
-      add_primitive(n.mesh, int(p), world);
+void GltfReader::walk(int root, const Mat4& parent) {
+  // Depth first with an explicit stack, nodes in the order a recursion would visit them (a
+  // recursion 1024 deep overflowed the stack of the AddressSanitizer build).
+  struct Frame {
+    int node;
+    Mat4 world;
+    std::size_t next_child;
+  };
+  std::vector<Frame> stack;
+  const auto enter = [&](int node, const Mat4& up) {
+    if (node < 0 || std::size_t(node) >= model_.nodes.size())
+      fail("node " + std::to_string(node) + " does not exist (" +
+           std::to_string(model_.nodes.size()) + " nodes)");
+    const tinygltf::Node& n = model_.nodes[std::size_t(node)];
+    const std::string at = "node " + named(node, n.name);
+    if (on_path_[std::size_t(node)]) fail(at + " is its own descendant (a cycle)");
+    if (stack.size() > std::size_t(kMaxGltfDepth))
+      fail(at + " is nested more than " + std::to_string(kMaxGltfDepth) + " deep");
+    if (++visits_ > kMaxGltfNodeVisits)
+      fail("more than " + std::to_string(kMaxGltfNodeVisits) +
+           " node instances (nodes shared by many parents)");
+    const Mat4 world = up * local_matrix(n, path_ + ": " + at);
+    if (n.camera >= 0 && !have_camera_) set_camera(node, n.camera, world);
+    if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
+      add_light(node, it->second, world);
+    if (n.mesh >= 0) {
+      if (std::size_t(n.mesh) >= model_.meshes.size())
+        fail(at + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
+             std::to_string(model_.meshes.size()) + " meshes)");
+      if (n.skin >= 0) warn_once("skin", "skins are not supported; meshes are drawn unskinned");
+      for (std::size_t p = 0; p < model_.meshes[std::size_t(n.mesh)].primitives.size(); ++p)
+        add_primitive(n.mesh, int(p), world);
+    }
+    on_path_[std::size_t(node)] = 1;
+    stack.push_back({node, world, 0});
+  };
+  enter(root, parent);
+  while (!stack.empty()) {
+    Frame& f = stack.back();
+    const std::vector<int>& children = model_.nodes[std::size_t(f.node)].children;
+    if (f.next_child < children.size()) {
+      const int child = children[f.next_child++];
+      const Mat4 world = f.world;  // push_back may move the frame
+      enter(child, world);
+    } else {
+      on_path_[std::size_t(f.node)] = 0;
+      stack.pop_back();
+    }
   }
-  on_path_[std::size_t(node)] = 1;
-  for (const int child : n.children) walk(child, world, depth + 1);
-  on_path_[std::size_t(node)] = 0;
 }
 
 void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world) {
@@ -815,7 +837,7 @@ Scene GltfReader::read() {
     for (std::size_t i = 0; i < child.size(); ++i)
       if (!child[i]) roots.push_back(int(i));
   }
-  for (const int r : roots) walk(r, kIdentity, 0);
+  for (const int r : roots) walk(r, kIdentity);
   if (!model_.animations.empty()) warn_once("anim", "animations are ignored");
   if (scene_.meshes.empty())
     fail(scene_.degenerate_triangles
