@@ -32,7 +32,7 @@ struct PathRay {
 
 // Whether a ray of weight w is worth tracing: its largest channel exceeds `min_weight`.
 MLIB_INLINE bool heavy_enough(const vec4& w, float min_weight) {
-  return std::max(std::max(w[0], w[1]), w[2]) > min_weight;
+  return mlib::hmax3(w) > min_weight;
 }
 
 // A shadow ray, with the light's unshadowed term at the point it leaves.

@@ -311,16 +311,6 @@ inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& cou
   // the angle a pixel spans at the image centre: a texture lookup's footprint per distance
   const float pixel_angle =
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
-  const auto shade_one = [&](const PathRay& pr, const SurfacePoint& s, LightList lights) {
-    if (sc.materials[s.material].model == Shading::pbr) {
-      PbrPoint p;
-      shade_pbr(sc, pr, s, lights, pixel_angle, b, counts, p);
-      spawn_pbr(sc, st, pr, s, p, b);
-    } else {
-      shade(sc, pr, s, lights, pixel_angle, b, counts);
-      spawn(sc, st, pr, s, b);
-    }
-  };
   for (std::size_t i = 0; i < b.rays.size(); ++i) {
     const PathRay& pr = b.rays[i];
     counts.reflection += pr.kind == RayKind::reflection;
@@ -330,14 +320,24 @@ inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& cou
                                                              : sc.background);
       continue;
     }
+    SurfacePoint here;
+    const SurfacePoint* s = &here;
+    LightList lights{nullptr, sc.lights.size()};
     if (lists) {
       const std::uint32_t k = b.list_of[i];
-      shade_one(pr, b.points[i],
-                LightList{b.light_items.data() + b.list_begin[k],
-                          b.list_begin[k + 1] - b.list_begin[k], b.list_sees.data() + b.list_begin[k]});
+      lights = LightList{b.light_items.data() + b.list_begin[k],
+                         b.list_begin[k + 1] - b.list_begin[k], b.list_sees.data() + b.list_begin[k]};
+      s = &b.points[i];
     } else {
-      shade_one(pr, surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale),
-                LightList{nullptr, sc.lights.size()});
+      here = surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale);
+    }
+    // Phong inline; the physically based step is a call of its own (pbr_shade.h), so that
+    // it does not weigh on the thesis's path
+    if (sc.materials[s->material].model == Shading::pbr) {
+      shade_and_spawn_pbr(sc, st, pr, *s, lights, pixel_angle, b, counts);
+    } else {
+      shade(sc, pr, *s, lights, pixel_angle, b, counts);
+      spawn(sc, st, pr, *s, b);
     }
   }
 }
