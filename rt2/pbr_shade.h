@@ -120,8 +120,8 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
                       PbrPoint& out) {
   const Material& m = sc.materials[s.material];
   const vec4 view = -r.ray.dir;
-  const PbrPoint p = pbr_point(sc, m, s, view, r.travelled + s.t, pixel_angle);
-  out = p;
+  out = pbr_point(sc, m, s, view, r.travelled + s.t, pixel_angle);
+  const PbrPoint& p = out;
   const float n_dot_v = std::max(float(dot(p.n, view)), 1e-4f);
   // emission and the light from far away: the lobe reflects E(v) of it (the split sum's
   // F0 A + B), the diffuse term what brdf.h's kD leaves, (1 - metallic)(1 - E(v))
