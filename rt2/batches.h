@@ -164,7 +164,10 @@ struct TexturePoint {
   float per_world = 0.0f;
 };
 
-inline TexturePoint texcoords_at(const Accel& acc, const SurfacePoint& s) {
+// `origin` is where the coordinates' origin is in the world (CompiledScene::origin): a
+// plane's coordinates are the world's, so that recentring the scene on the camera does not
+// move its texture (as the checker's).
+inline TexturePoint texcoords_at(const Accel& acc, const SurfacePoint& s, const vec4& origin) {
   TexturePoint tp;
   const std::uint32_t i = prim_index(s.prim);
   if (prim_tag(s.prim) == kTriangleTag) {
@@ -190,8 +193,9 @@ inline TexturePoint texcoords_at(const Accel& acc, const SurfacePoint& s) {
     const vec4 a = std::fabs(float(pl.n[1])) < 0.9f ? vec4(0, 1, 0) : vec4(1, 0, 0);
     const vec4 x = normalize(cross(a, pl.n));
     const vec4 y = cross(pl.n, x);
-    tp.u = dot(s.p, x);
-    tp.v = dot(s.p, y);
+    const vec4 world = s.p + origin;
+    tp.u = dot(world, x);
+    tp.v = dot(world, y);
     tp.per_world = 1.0f;
   }
   return tp;

@@ -90,7 +90,7 @@ inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const Surf
   vec4 base = m.base_color, emissive = m.emissive;
   float metallic = m.metallic, roughness = m.roughness;
   vec4 n = s.ns;
-  const TexturePoint tp = texcoords_at(sc.accel, s);
+  const TexturePoint tp = texcoords_at(sc.accel, s, sc.origin);
   const float width = travelled * pixel_angle * tp.per_world;
   const auto sample = [&](std::uint32_t t) { return sc.textures.sample(t, tp.u, tp.v, width); };
   if (m.base_color_texture != kNoTexture) base *= sample(m.base_color_texture);

@@ -1,5 +1,6 @@
 // rt2/tracer.h — the render kernel: Whitted ray tracing with Phong shading (thesis 3.1,
-// 3.2) over batches of rays, as a template over the triangle test.
+// 3.2), or physically based shading for the materials that ask for it (pbr_shade.h), over
+// batches of rays, as a template over the triangle test.
 //
 // A tile is traced in blocks of pixels (RenderSettings::block). For a block and a range of
 // samples the kernel runs stages over batches, breadth first through the ray tree:
@@ -21,7 +22,8 @@
 //      not traced: it passes 1, as its walk would return;
 //   5. repeat 2 ... 4 with the next batch until it is empty or `depth` is reached;
 //   6. add each sample's colour to the film, samples in index order.
-// A ray's contribution is its weight (the product of the Kr / Kt factors along its path)
+// A ray's contribution is its weight (the product of the Kr / Kt factors along its path,
+// per colour channel: physically based surfaces weight by Fresnel)
 // times the local colour where it lands, as before; only the order in which a sample's
 // terms are summed follows the stages (so images differ from the depth-first renderer of
 // rt2 0.2 by rounding, RMSE below 1e-7 on the shipped scenes). Every sample is computed on
@@ -62,7 +64,7 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
   if (lights.count == 0) return;
   vec4 kd = m.diffuse_at(s.p + sc.origin);  // the checker lives in world coordinates
   if (m.base_color_texture != kNoTexture) {  // MTL's map_Kd
-    const TexturePoint tp = texcoords_at(sc.accel, s);
+    const TexturePoint tp = texcoords_at(sc.accel, s, sc.origin);
     kd *= sc.textures.sample(m.base_color_texture, tp.u, tp.v,
                              (r.travelled + s.t) * pixel_angle * tp.per_world);
   }

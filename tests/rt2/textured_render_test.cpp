@@ -180,3 +180,49 @@ TEST(TexturedRender, AConstantEnvironmentImageIsTheBackgroundOfEveryPixel) {
 
 }  // namespace
 }  // namespace rt2
+
+namespace rt2 {
+namespace {
+
+// A plane's texture lives in world coordinates, as the checker does: recentring the scene
+// on a camera far from the origin (what rt2cpr does before rendering) moves no texel.
+TEST(TexturedRender, RecentringOnTheCameraDoesNotMoveAPlanesTexture) {
+  TempDir dir("textured_render");
+  write_texels(dir.path("stripes.png"), 4, 4,
+               [](int x, int) { return x % 2 ? std::array{255, 0, 0} : std::array{0, 0, 255}; });
+  const std::string scene = dir.write("s.toml", R"(
+[camera]
+position = [3.3, 2, 1.7]
+look_at = [3.3, 0, 1.7]
+up = [0, 0, -1]
+fov = 40
+[materials.m]
+ambient = [0, 0, 0]
+diffuse = [1, 1, 1]
+diffuse_texture = "stripes.png"
+[[lights]]
+position = [3.3, 5, 1.7]
+[[planes]]
+normal = [0, 1, 0]
+offset = 0
+material = "m"
+)");
+  Scene s = load_scene(scene);
+  const Image here = test::render_scene(s, settings());
+  recenter_on_camera(s);
+  const Image recentred = test::render_scene(s, settings());
+  int red = 0, blue = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      EXPECT_EQ(dominant(pixel(here, x, y)), dominant(pixel(recentred, x, y)))
+          << x << "," << y << ": " << rgb(pixel(here, x, y)) << " vs "
+          << rgb(pixel(recentred, x, y));
+      red += dominant(pixel(here, x, y)) == 0;
+      blue += dominant(pixel(here, x, y)) == 2;
+    }
+  EXPECT_GT(red, 50);
+  EXPECT_GT(blue, 50);
+}
+
+}  // namespace
+}  // namespace rt2
