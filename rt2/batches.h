@@ -14,21 +14,30 @@
 #include "rt2/cluster_visibility.h"
 #include "rt2/offset.h"
 #include "rt2/ray.h"
+#include "rt2/render.h"
 
 namespace rt2::RT2_ISA {
 namespace detail {
 
-// A ray of the ray tree, and whose sample it adds to.
+// A ray of the ray tree, and whose sample it adds to: 48 bytes (one with the path's length
+// and its own depth and kind was 64, and the thesis's headline frame 3.5 % slower: the
+// batches are streamed through at every stage). A ray's depth is its batch's, and its kind
+// is counted when it is spawned.
 struct PathRay {
   Ray ray;
-  // The product of the reflection / transmission factors along the path: Kr and Kt (the
-  // same in every lane) for Phong, the Fresnel-weighted colours of physically based ones.
-  vec4 weight;
+  // The product of the reflection / transmission factors along the path, per channel: Kr
+  // and Kt (the same in every channel) for Phong, Fresnel-weighted colours for physically
+  // based surfaces. Read with weight(), the three floats and the sample as one vector.
+  float rgb[3];
   std::uint32_t sample;  // index into the block's sample colours
-  int depth;
-  float travelled;       // the path's length from the camera to this ray's origin
-  RayKind kind;
+  MLIB_INLINE vec4 weight() const { return mlib::load_xyz(rgb); }
+  MLIB_INLINE void set_weight(const vec4& w) {
+    rgb[0] = w[0];
+    rgb[1] = w[1];
+    rgb[2] = w[2];
+  }
 };
+static_assert(sizeof(PathRay) == 48);
 
 // Whether a ray of weight w is worth tracing: its largest channel exceeds `min_weight`.
 MLIB_INLINE bool heavy_enough(const vec4& w, float min_weight) {
@@ -140,19 +149,18 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
   return s;
 }
 
-// Appends a child of `parent`, starting `travelled` from the camera, to the next batch,
-// field by field (a whole temporary copied in would be read back as one wide load from
-// narrower stores: a store-forwarding stall).
+// Appends a child of `parent` to the next batch, field by field (a whole temporary copied
+// in would be read back as one wide load from narrower stores: a store-forwarding stall),
+// and counts it by kind.
 MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, const vec4& weight,
-                               const PathRay& parent, RayKind kind, float travelled) {
+                               const PathRay& parent, RayKind kind, RayCounts& counts) {
   PathRay& pr = b.next.emplace_back();
   pr.ray.org = org;
   pr.ray.dir = dir;
-  pr.weight = weight;
+  pr.set_weight(weight);
   pr.sample = parent.sample;
-  pr.depth = parent.depth + 1;
-  pr.travelled = travelled;
-  pr.kind = kind;
+  counts.reflection += kind == RayKind::reflection;
+  counts.refraction += kind == RayKind::refraction;
 }
 
 // The texture coordinates (u, v) at a surface point, and how many texture units one world

@@ -78,10 +78,11 @@ inline vec4 normal_mapped(const Accel& acc, const SurfacePoint& s, const vec4& t
   return nn > 0.0f && std::isfinite(nn) ? n / std::sqrt(nn) : s.ns;
 }
 
-// The material of `s` with its textures sampled. `travelled` is the length of the path
-// from the camera to the hit (the pixel cone's width there is travelled x pixel_angle).
+// The material of `s` with its textures sampled over the pixel cone's width at the hit,
+// s.t x pixel_angle (the ray's own length: for a secondary ray, an underestimate of its
+// path's cone, so reflections sample textures a little sharp).
 inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const SurfacePoint& s,
-                          const vec4& view, float travelled, float pixel_angle) {
+                          const vec4& view, float pixel_angle) {
   if (m.base_color_texture == kNoTexture && m.metallic_roughness_texture == kNoTexture &&
       m.emissive_texture == kNoTexture && m.normal_texture == kNoTexture &&
       m.roughness_texture == kNoTexture && m.metallic_texture == kNoTexture)
@@ -91,7 +92,7 @@ inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const Surf
   float metallic = m.metallic, roughness = m.roughness;
   vec4 n = s.ns;
   const TexturePoint tp = texcoords_at(sc.accel, s, sc.origin);
-  const float width = travelled * pixel_angle * tp.per_world;
+  const float width = s.t * pixel_angle * tp.per_world;
   const auto sample = [&](std::uint32_t t) { return sc.textures.sample(t, tp.u, tp.v, width); };
   if (m.base_color_texture != kNoTexture) base *= sample(m.base_color_texture);
   if (m.emissive_texture != kNoTexture) emissive *= sample(m.emissive_texture);
@@ -120,7 +121,7 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
                       PbrPoint& out) {
   const Material& m = sc.materials[s.material];
   const vec4 view = -r.ray.dir;
-  out = pbr_point(sc, m, s, view, r.travelled + s.t, pixel_angle);
+  out = pbr_point(sc, m, s, view, pixel_angle);
   const PbrPoint& p = out;
   const float n_dot_v = std::max(float(dot(p.n, view)), 1e-4f);
   // emission and the light from far away: the lobe reflects E(v) of it (the split sum's
@@ -130,7 +131,8 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
   vec4 local = p.emissive + kd * p.surface.diffuse * sc.environment.irradiance(p.n);
   if (p.surface.roughness > kMirrorRoughness)
     local += sc.environment.specular(reflect(r.ray.dir, p.n), p.surface.roughness) * e_v;
-  b.colors[r.sample] += r.weight * local;
+  const vec4 weight = r.weight();
+  b.colors[r.sample] += weight * local;
   ++counts.lights.points;
   counts.lights.considered += lights.count;
   const vec4& origin = s.above;
@@ -151,8 +153,8 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
     ShadowRay& sr = b.shadows.emplace_back();
     sr.ray.org = origin;
     sr.ray.dir = l;
-    sr.term = r.weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
-                                                    : light.radiance()));
+    sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
+                                                  : light.radiance()));
     sr.distance = dist;
     sr.sample = r.sample;
     sr.light = li;
@@ -162,32 +164,32 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
 
 // Stage 3's secondary rays of a physically based hit: the mirror ray of a smooth surface
 // and the refracted ray of a transmissive one (see the header).
-inline void spawn_pbr(const CompiledScene& sc, const RenderSettings& st, const PathRay& r,
-                      const SurfacePoint& s, const PbrPoint& p, Batches& b) {
-  if (r.depth >= st.depth) return;
+inline void spawn_pbr(const CompiledScene& sc, const RenderSettings& st, int depth,
+                      const PathRay& r, const SurfacePoint& s, const PbrPoint& p, Batches& b,
+                      RayCounts& counts) {
+  if (depth >= st.depth) return;
   const bool mirror = p.surface.roughness <= kMirrorRoughness;
   if (!mirror && !(p.transmission > 0.0f)) return;
   const vec4 view = -r.ray.dir;
   const float n_dot_v = std::max(float(dot(p.n, view)), 0.0f);
   const vec4 f = fresnel_schlick(n_dot_v, p.surface.f0);
-  const float travelled = r.travelled + s.t;
   if (p.transmission > 0.0f) {
     const Material& m = sc.materials[s.material];
-    const vec4 w = r.weight * (vec4(1.0f, 1.0f, 1.0f) - f) * p.base * p.transmission;
+    const vec4 w = r.weight() * (vec4(1.0f, 1.0f, 1.0f) - f) * p.base * p.transmission;
     if (heavy_enough(w, st.min_weight)) {
       const float eta = s.entering ? 1.0f / m.ior : m.ior;
       vec4 t;
       if (refract(r.ray.dir, p.n, eta, t))
         push_path_ray(b, offset_ray_origin(s.p, -s.ng, sc.offset_scale), t, w, r,
-                      RayKind::refraction, travelled);
+                      RayKind::refraction, counts);
       else
-        push_path_ray(b, s.above, reflect(r.ray.dir, p.n), w, r, RayKind::reflection, travelled);
+        push_path_ray(b, s.above, reflect(r.ray.dir, p.n), w, r, RayKind::reflection, counts);
     }
   }
   if (mirror) {
-    const vec4 w = r.weight * f;
+    const vec4 w = r.weight() * f;
     if (heavy_enough(w, st.min_weight))
-      push_path_ray(b, s.above, reflect(r.ray.dir, p.n), w, r, RayKind::reflection, travelled);
+      push_path_ray(b, s.above, reflect(r.ray.dir, p.n), w, r, RayKind::reflection, counts);
   }
 }
 
@@ -195,12 +197,13 @@ inline void spawn_pbr(const CompiledScene& sc, const RenderSettings& st, const P
 // kernel's loop over hits, which stays the Phong path's (inlined, the step cost ~4 % more
 // instructions on the thesis scene).
 [[gnu::noinline]] inline void shade_and_spawn_pbr(const CompiledScene& sc, const RenderSettings& st,
-                                                  const PathRay& r, const SurfacePoint& s,
-                                                  LightList lights, float pixel_angle, Batches& b,
+                                                  int depth, const PathRay& r,
+                                                  const SurfacePoint& s, LightList lights,
+                                                  float pixel_angle, Batches& b,
                                                   RayCounts& counts) {
   PbrPoint p;
   shade_pbr(sc, r, s, lights, pixel_angle, b, counts, p);
-  spawn_pbr(sc, st, r, s, p, b);
+  spawn_pbr(sc, st, depth, r, s, p, b, counts);
 }
 
 }  // namespace detail

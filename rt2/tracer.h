@@ -58,7 +58,8 @@ namespace detail {
 inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
                   LightList lights, float pixel_angle, Batches& b, RayCounts& counts) {
   const Material& m = sc.materials[s.material];
-  b.colors[r.sample] += r.weight * (m.ambient * sc.ambient);
+  const vec4 weight = r.weight();
+  b.colors[r.sample] += weight * (m.ambient * sc.ambient);
   ++counts.lights.points;
   counts.lights.considered += lights.count;
   if (lights.count == 0) return;
@@ -66,7 +67,7 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
   if (m.base_color_texture != kNoTexture) {  // MTL's map_Kd
     const TexturePoint tp = texcoords_at(sc.accel, s, sc.origin);
     kd *= sc.textures.sample(m.base_color_texture, tp.u, tp.v,
-                             (r.travelled + s.t) * pixel_angle * tp.per_world);
+                             s.t * pixel_angle * tp.per_world);
   }
   const vec4& origin = s.above;
   const vec4 view = -r.ray.dir;
@@ -93,8 +94,8 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
     ShadowRay& sr = b.shadows.emplace_back();
     sr.ray.org = origin;
     sr.ray.dir = l;
-    sr.term = r.weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
-                                                    : light.radiance()));
+    sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
+                                                  : light.radiance()));
     sr.distance = dist;
     sr.sample = r.sample;
     sr.light = li;
@@ -104,28 +105,26 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
 
 // Stage 3's secondary rays: refraction (or, on total internal reflection, its share
 // reflected) and reflection, when deep and heavy enough.
-inline void spawn(const CompiledScene& sc, const RenderSettings& st, const PathRay& r,
-                  const SurfacePoint& s, Batches& b) {
-  if (r.depth >= st.depth) return;
+inline void spawn(const CompiledScene& sc, const RenderSettings& st, int depth, const PathRay& r,
+                  const SurfacePoint& s, Batches& b, RayCounts& counts) {
+  if (depth >= st.depth) return;
   const Material& m = sc.materials[s.material];
   if (m.transparency > 0.0f) {
-    const vec4 w = r.weight * m.transparency;
+    const vec4 w = r.weight() * m.transparency;
     if (heavy_enough(w, st.min_weight)) {
       const float eta = s.entering ? 1.0f / m.ior : m.ior;
       vec4 t;
       if (refract(r.ray.dir, s.ns, eta, t))
         push_path_ray(b, offset_ray_origin(s.p, -s.ng, sc.offset_scale), t, w, r,
-                      RayKind::refraction, r.travelled + s.t);
+                      RayKind::refraction, counts);
       else  // total internal reflection: the transmitted share is reflected
-        push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection,
-                      r.travelled + s.t);
+        push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection, counts);
     }
   }
   if (m.reflectivity > 0.0f) {
-    const vec4 w = r.weight * m.reflectivity;
+    const vec4 w = r.weight() * m.reflectivity;
     if (heavy_enough(w, st.min_weight))
-      push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection,
-                    r.travelled + s.t);
+      push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection, counts);
   }
 }
 
@@ -150,12 +149,9 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
           for (int x = gx; x < std::min(gx + 4, block.x1); ++x) {
             PathRay& pr = b.rays.emplace_back();
             pr.ray = cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height);
-            pr.weight = vec4(1.0f, 1.0f, 1.0f, 1.0f);
-            pr.travelled = 0.0f;
+            pr.rgb[0] = pr.rgb[1] = pr.rgb[2] = 1.0f;
             pr.sample = static_cast<std::uint32_t>(((y - block.y0) * bw + x - block.x0) * samples +
                                                    k - s0);
-            pr.depth = 0;
-            pr.kind = RayKind::primary;
           }
         b.packet_begin.push_back(static_cast<std::uint32_t>(b.rays.size()));
       }
@@ -307,14 +303,14 @@ inline void find_lights(const Renderer& r, bool primary, Batches& b, LightCounts
 // (pbr_shade.h), so that it does not weigh on the thesis's path. Forced inline at both
 // call sites of shade_hits: a surface point built in one place and read through a pointer
 // in another costs a store-forwarding stall per hit (the headline frame took 30 % longer).
-MLIB_INLINE void shade_hit(const CompiledScene& sc, const RenderSettings& st, const PathRay& pr,
-                           const SurfacePoint& s, LightList lights, float pixel_angle,
-                           Batches& b, RayCounts& counts) {
+MLIB_INLINE void shade_hit(const CompiledScene& sc, const RenderSettings& st, int depth,
+                           const PathRay& pr, const SurfacePoint& s, LightList lights,
+                           float pixel_angle, Batches& b, RayCounts& counts) {
   if (sc.materials[s.material].model == Shading::pbr) {
-    shade_and_spawn_pbr(sc, st, pr, s, lights, pixel_angle, b, counts);
+    shade_and_spawn_pbr(sc, st, depth, pr, s, lights, pixel_angle, b, counts);
   } else {
     shade(sc, pr, s, lights, pixel_angle, b, counts);
-    spawn(sc, st, pr, s, b);
+    spawn(sc, st, depth, pr, s, b, counts);
   }
 }
 
@@ -322,7 +318,7 @@ MLIB_INLINE void shade_hit(const CompiledScene& sc, const RenderSettings& st, co
 // miss takes the background. With lists, the surface points are b.points (the first step
 // made them, the second used them); without, every hit considers every light and its
 // surface point is made here (the first two steps are skipped: one pass over the hits).
-inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& counts) {
+inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, RayCounts& counts) {
   const CompiledScene& sc = r.scene();
   const RenderSettings& st = r.settings();
   // the angle a pixel spans at the image centre: a texture lookup's footprint per distance
@@ -330,21 +326,19 @@ inline void shade_hits(const Renderer& r, bool lists, Batches& b, RayCounts& cou
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
   for (std::size_t i = 0; i < b.rays.size(); ++i) {
     const PathRay& pr = b.rays[i];
-    counts.reflection += pr.kind == RayKind::reflection;
-    counts.refraction += pr.kind == RayKind::refraction;
     if (!b.hits[i].found()) {
-      b.colors[pr.sample] += pr.weight * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
+      b.colors[pr.sample] += pr.weight() * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
                                                              : sc.background);
       continue;
     }
     if (lists) {
       const std::uint32_t k = b.list_of[i];
-      shade_hit(sc, st, pr, b.points[i],
+      shade_hit(sc, st, depth, pr, b.points[i],
                 LightList{b.light_items.data() + b.list_begin[k],
                           b.list_begin[k + 1] - b.list_begin[k], b.list_sees.data() + b.list_begin[k]},
                 pixel_angle, b, counts);
     } else {
-      shade_hit(sc, st, pr, surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale),
+      shade_hit(sc, st, depth, pr, surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale),
                 LightList{nullptr, sc.lights.size()}, pixel_angle, b, counts);
     }
   }
@@ -460,7 +454,8 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   generate(r, block, s0, s1, b);  // 1.
   counts.primary += n;
   lap(times.generate);
-  for (bool primary = true; !b.rays.empty(); primary = false) {
+  for (int depth = 0; !b.rays.empty(); ++depth) {
+    const bool primary = depth == 0;
     b.next.clear();
     b.shadows.clear();
     // 2. intersect: the primary batch in its packets, the others 16 rays at a time
@@ -482,7 +477,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
       find_lights(r, primary, b, counts.lights);
       lap(times.lights);
     }
-    shade_hits(r, lists, b, counts);
+    shade_hits(r, lists, depth, b, counts);
     lap(times.shade);
     // 4. shadows, each sample's terms added in batch order
     trace_shadows<Watertight>(sc, st, b, counts.shadow_walk);
