@@ -4,13 +4,14 @@
 // on a ray tracer's hits:
 //   - textures first: base colour, metallic-roughness, emissive and the normal map at the
 //     hit's texture coordinates, filtered over the footprint of the pixel's cone at the hit
-//     (texture.h);
+//     (of the ray's own segment for a secondary hit; texture.h);
 //   - emitted light, and the light from far away (the environment, or the scene's ambient
 //     colour from every direction when it has none): specular from the roughness-indexed
 //     prefiltered map times the lobe's albedo E(v) = F0 A + B (the split sum,
 //     environment.h, brdf_lut.h), diffuse (1 - metallic)(1 - E(v)) base times the
-//     irradiance map's E/pi, the share brdf.h's energy-conserving kD gives it (the text's
-//     kD = 1 - F_roughness(n·v) would let a white sphere under a white sky outshine it);
+//     irradiance E/pi (9 spherical harmonics), the share brdf.h's energy-conserving kD
+//     gives it (the text's kD = 1 - F_roughness(n·v) would let a white sphere under a white
+//     sky outshine it);
 //   - every light in range through the BRDF, f(l, v) (n·l) times its radiance, into the
 //     shadow batch like Phong's terms (with the same range window);
 //   - secondary rays: a smooth surface (roughness <= kMirrorRoughness) reflects a mirror
