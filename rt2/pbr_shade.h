@@ -117,9 +117,11 @@ inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const Surf
 
 // Stage 3 for one physically based hit: emission and environment light into the sample's
 // colour at once, every light's BRDF term into the shadow batch (see shade).
+// `last` says that the ray is at the depth limit: a mirror then shows the prefiltered
+// environment instead of the ray it cannot spawn (rather than nothing, as Phong's does).
 inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
-                      LightList lights, float pixel_angle, Batches& b, RayCounts& counts,
-                      PbrPoint& out) {
+                      LightList lights, float pixel_angle, bool last, Batches& b,
+                      RayCounts& counts, PbrPoint& out) {
   const Material& m = sc.materials[s.material];
   const vec4 view = -r.ray.dir;
   out = pbr_point(sc, m, s, view, pixel_angle);
@@ -130,7 +132,7 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
   const vec4 e_v = specular_albedo(p.surface, n_dot_v);
   const vec4 kd = (vec4(1.0f, 1.0f, 1.0f) - e_v) * (1.0f - p.surface.metallic);
   vec4 local = p.emissive + kd * p.surface.diffuse * sc.environment.irradiance(p.n);
-  if (p.surface.roughness > kMirrorRoughness)
+  if (p.surface.roughness > kMirrorRoughness || last)
     local += sc.environment.specular(reflect(r.ray.dir, p.n), p.surface.roughness) * e_v;
   const vec4 weight = r.weight();
   b.colors[r.sample] += weight * local;
@@ -203,7 +205,7 @@ inline void spawn_pbr(const CompiledScene& sc, const RenderSettings& st, int dep
                                                   float pixel_angle, Batches& b,
                                                   RayCounts& counts) {
   PbrPoint p;
-  shade_pbr(sc, r, s, lights, pixel_angle, b, counts, p);
+  shade_pbr(sc, r, s, lights, pixel_angle, depth >= st.depth, b, counts, p);
   spawn_pbr(sc, st, depth, r, s, p, b, counts);
 }
 

@@ -220,6 +220,27 @@ TEST(PbrShading, SmoothMetalTintsItsReflectionByTheBaseColourAtNormalIncidence) 
   EXPECT_NEAR(img.rgb[centre + 2], 0.3f, 2e-3f);
 }
 
+// At the depth limit a mirror cannot spawn its ray: it shows the prefiltered environment
+// instead (here a uniform one, the ambient colour), tinted by Fresnel, not black. One
+// level deeper it shows the background through its ray; both are close to F0 times the
+// light from there.
+TEST(PbrShading, SmoothMetalAtTheDepthLimitShowsTheEnvironmentNotBlack) {
+  SphereSetup s = pbr_sphere(1.0f, 0.0f);
+  s.scene.lights.clear();
+  s.scene.ambient = vec4(1, 1, 1);     // the uniform environment
+  s.scene.background = vec4(1, 1, 1);  // what the mirror ray sees
+  RenderSettings st;
+  st.width = st.height = 15;
+  st.min_weight = 0.0f;
+  const std::size_t centre = 3 * (7 * 15 + 7);
+  for (const int depth : {0, 1}) {
+    st.depth = depth;
+    const Image img = test::render_scene(s.scene, st);
+    EXPECT_NEAR(img.rgb[centre + 0], 0.8f, 0.02f) << "depth " << depth;
+    EXPECT_NEAR(img.rgb[centre + 2], 0.3f, 0.02f) << "depth " << depth;
+  }
+}
+
 // Emission is added whatever the light.
 TEST(PbrShading, EmissiveSurfaceShowsItsEmissionInTheDark) {
   SphereSetup s = pbr_sphere(0.0f, 1.0f);
