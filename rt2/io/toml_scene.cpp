@@ -685,13 +685,14 @@ Scene read_toml_scene(const std::string& path) {
   Scene scene;
   read_camera(root, scene);
   read_world(root, scene);
-  read_environment(root, scene, fs::path(path).parent_path());
-  read_materials(root, scene, fs::path(path).parent_path());  // first, so that objects can name them wherever they are
+  const fs::path folder = fs::path(path).parent_path();
+  read_environment(root, scene, folder);
+  read_materials(root, scene, folder);  // first, so that objects can name them wherever they are
   read_lights(root, scene);
   read_light_field(root, scene);
   read_spheres(root, scene);
   read_planes(root, scene);
-  read_meshes(root, scene, fs::path(path).parent_path());
+  read_meshes(root, scene, folder);
   validate(path, scene);
   return scene;
 }
