@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rt2/accel.h"
+#include "rt2/light.h"
 #include "rt2/cluster_visibility.h"
 #include "rt2/offset.h"
 #include "rt2/ray.h"
@@ -161,6 +162,25 @@ MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, con
   pr.sample = parent.sample;
   counts.reflection += kind == RayKind::reflection;
   counts.refraction += kind == RayKind::refraction;
+}
+
+// Appends a shadow ray from `origin` towards `light` (index li), unit direction l, `dist`
+// away, carrying weight x (term x the light's radiance and range window), `term` being the
+// unshadowed contribution per unit radiance (in that order, as before: the same bits).
+// Field by field: a whole temporary copied in would be read back as one wide load from
+// narrower stores (a store-forwarding stall, 14 % of a frame).
+MLIB_INLINE void push_shadow_ray(Batches& b, const vec4& origin, const vec4& l, float dist,
+                                 const vec4& weight, const vec4& term, const Light& light,
+                                 std::uint32_t li, std::uint32_t sample, bool unoccluded) {
+  ShadowRay& sr = b.shadows.emplace_back();
+  sr.ray.org = origin;
+  sr.ray.dir = l;
+  sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
+                                                : light.radiance()));
+  sr.distance = dist;
+  sr.sample = sample;
+  sr.light = li;
+  sr.unoccluded = unoccluded;
 }
 
 // The texture coordinates (u, v) at a surface point, and how many texture units one world

@@ -153,15 +153,7 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
     const bool unoccluded = lights.sees && lights.sees[k];
     ++(unoccluded ? counts.lights.unoccluded : counts.shadow);
     const vec4 term = brdf(p.surface, p.n, view, l, e_v) * n_dot_l;
-    ShadowRay& sr = b.shadows.emplace_back();
-    sr.ray.org = origin;
-    sr.ray.dir = l;
-    sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
-                                                  : light.radiance()));
-    sr.distance = dist;
-    sr.sample = r.sample;
-    sr.light = li;
-    sr.unoccluded = unoccluded;
+    push_shadow_ray(b, origin, l, dist, weight, term, light, li, r.sample, unoccluded);
   }
 }
 

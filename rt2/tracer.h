@@ -89,17 +89,7 @@ inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint&
       const float r_dot_v = dot(2.0f * n_dot_l * s.ns - l, view);  // R = reflect(-L, N)
       if (r_dot_v > 0.0f) term += m.specular * std::pow(r_dot_v, m.shininess);
     }
-    // Written field by field: a whole temporary copied in would be read back as one wide
-    // load from narrower stores (a store-forwarding stall, 14 % of a frame).
-    ShadowRay& sr = b.shadows.emplace_back();
-    sr.ray.org = origin;
-    sr.ray.dir = l;
-    sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
-                                                  : light.radiance()));
-    sr.distance = dist;
-    sr.sample = r.sample;
-    sr.light = li;
-    sr.unoccluded = unoccluded;
+    push_shadow_ray(b, origin, l, dist, weight, term, light, li, r.sample, unoccluded);
   }
 }
 
