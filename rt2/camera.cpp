@@ -27,4 +27,9 @@ Camera Camera::look_at(const vec4& position, const vec4& target, const vec4& up,
   return Camera(position, d, up, fov_degrees);
 }
 
+Camera Camera::from_file_values(const vec4& position, const vec4& direction, const vec4& up,
+                                float fov_degrees) {
+  return Camera(position, normalize(direction), normalize(up), fov_degrees);
+}
+
 }  // namespace rt2

@@ -22,6 +22,11 @@ class Camera {
   Camera(const vec4& position, const vec4& direction, const vec4& up, float fov_degrees);
   static Camera look_at(const vec4& position, const vec4& target, const vec4& up,
                         float fov_degrees);
+  // The camera a scene file's [camera] table describes (scenes/FORMAT.md): `direction` (for
+  // look_at: look_at - position) and `up` as written, normalised as the file reader does,
+  // so that a camera printed with all its digits and read back is the same bits.
+  static Camera from_file_values(const vec4& position, const vec4& direction, const vec4& up,
+                                 float fov_degrees);
 
   // The primary ray through continuous pixel coordinates (px, py) of a width x height image.
   MLIB_INLINE Ray ray(float px, float py, int width, int height) const {

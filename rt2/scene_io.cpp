@@ -81,6 +81,10 @@ Scene load_toml_scene(const std::string& path) {
   return guarded(path, [&] { return read_toml_scene(path); });
 }
 
+Camera load_camera(const std::string& path) {
+  return guarded(path, [&] { return io::read_toml_camera(path); });
+}
+
 Scene load_gltf_scene(const std::string& path) {
   return guarded(path, [&] { return read_gltf_scene(path); });
 }

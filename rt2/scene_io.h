@@ -28,6 +28,10 @@ Scene load_scene(const std::string& path);
 // Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
 Scene load_toml_scene(const std::string& path);
 
+// Reads a TOML file holding only a `[camera]` table (scenes/FORMAT.md; the block the
+// interactive viewer prints with `C`): the camera it describes.
+Camera load_camera(const std::string& path);
+
 // Loads a glTF 2.0 scene, JSON (.gltf) or binary (.glb), told apart by its content
 // (scenes/FORMAT.md: what is read and how it maps). Without a camera or without lights it is
 // framed as frame_obj frames an OBJ (no ground plane). Buffer and image files are relative

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <mutex>
 #include <thread>
@@ -72,7 +73,7 @@ std::vector<Tile> make_tiles(const Schedule& schedule, int width, int height) {
 }
 
 FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film& film,
-                        int pass, const Progress& progress) {
+                        int pass, const Progress& progress, std::stop_token stop) {
   const RenderSettings& st = renderer.settings();
   const std::vector<Tile> tiles = make_tiles(schedule, st.width, st.height);
   const int n = static_cast<int>(tiles.size());
@@ -80,7 +81,12 @@ FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film
   result.portions = n;
   std::mutex mutex;
   int done = 0;
+  std::atomic<bool> skipped = false;
   auto work = [&](int i) {
+    if (stop.stop_requested()) {
+      skipped = true;
+      return;
+    }
     RayCounts counts;
     renderer.render_tile(tiles[std::size_t(i)], pass, film, counts);
     const std::lock_guard<std::mutex> lock(mutex);
@@ -96,6 +102,7 @@ FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film
     case Backend::tbb: detail::run_tbb(threads, n, work); break;
   }
   result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  result.complete = !skipped;
   return result;
 }
 

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct FrameResult {
   RayCounts rays;
   double ms = 0.0;  // wall time
   int portions = 0;  // tiles
+  // render_pass only: false when a stop request left some tiles unrendered (the film then
+  // holds part of the pass and is only fit to be cleared).
+  bool complete = true;
   std::uint64_t nonfinite_pixels = 0;  // render_frame only: see Film::resolve
 };
 
@@ -47,9 +51,11 @@ std::vector<Tile> make_tiles(const Schedule& schedule, int width, int height);
 // call at a time.
 using Progress = std::function<void(int, int)>;
 
-// Renders pass `pass` of every tile into `film` (which must be the settings' size).
+// Renders pass `pass` of every tile into `film` (which must be the settings' size). Once
+// `stop` is requested, tiles not yet started are skipped (those being rendered finish) and
+// the result is not `complete`: an interactive view drops a pass its camera left.
 FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film& film,
-                        int pass, const Progress& progress = {});
+                        int pass, const Progress& progress = {}, std::stop_token stop = {});
 
 // Renders every pass of the frame into a fresh film and its mean into `image` (resized to
 // the settings' size); progress counts tiles over all passes.

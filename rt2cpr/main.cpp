@@ -8,17 +8,20 @@
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
+#include <unistd.h>
+#include <cstdlib>
 #include <vector>
 
-#include "rt2/builtin_scene.h"
 #include "rt2/compiled_scene.h"
 #include "rt2/error.h"
 #include "rt2/image_io.h"
 #include "rt2/io/output_file.h"
-#include "rt2/scene_io.h"
 #include "rt2cpr/options.h"
 #include "rt2cpr/progress.h"
 #include "rt2cpr/report.h"
+#include "rt2cpr/scene_setup.h"
+#include "rt2cpr/viewer/viewer.h"
 
 namespace rt2cpr {
 namespace {
@@ -42,6 +45,10 @@ rt2::Image load_reference(const Options& o) {
 }
 
 int run(const Options& o) {
+  if (o.interactive.on) {
+    viewer::run_interactive(o);
+    return 0;
+  }
   // Fail on unwritable outputs, a bad reference and impossible sizes before any work.
   if (!o.output.empty()) rt2::check_writable_image(o.output);
   if (!o.stats.empty()) rt2::io::check_output_path(o.stats);
@@ -49,26 +56,12 @@ int run(const Options& o) {
   const rt2::Image reference = load_reference(o);
 
   auto t0 = Clock::now();
-  rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
-  if (o.light_range && !scene.light_field &&
-      (o.lights < 0 || std::size_t(o.lights) <= scene.lights.size()))
-    throw rt2::Error("--light-range applies to the lights --lights adds and to a scene's "
-                     "[light_field]; this scene has no light field and no lights are added");
-  if (o.lights >= 0 || o.light_range)
-    rt2::set_light_count(scene, o.lights >= 0 ? std::size_t(o.lights) : scene.lights.size(),
-                         o.light_range);
-  if (o.environment == "none")
-    scene.environment.reset();
-  else if (o.environment == "sky")
-    scene.environment = rt2::EnvironmentDesc{};
-  else if (!o.environment.empty())
-    scene.environment = rt2::EnvironmentDesc{.image = o.environment};
-  scene.validate();
-  rt2::recenter_on_camera(scene);  // full float precision where the pixels come from
+  rt2::Scene scene = load_scene(o);
+  set_lights(scene, o.lights, o.light_range);
   const double load_ms = ms_since(t0);
 
   t0 = Clock::now();
-  rt2::CompiledScene compiled = rt2::CompiledScene::compile(scene, o.bvh, o.isa);
+  rt2::CompiledScene compiled = compile_at_camera(scene, o);
   const double build_ms = ms_since(t0);
   const rt2::Renderer renderer(compiled, rt2::View{scene.camera, o.render});
 
@@ -134,7 +127,22 @@ int run(const Options& o) {
 }  // namespace
 }  // namespace rt2cpr
 
+// The viewer's render threads share the machine with the window's thread and the display
+// server, which need a little CPU between two frames. OpenMP's threads spin-wait for the
+// next parallel region by default, taking that time away: on 2 cores the viewer showed 25
+// frames/s with OMP_WAIT_POLICY=active and 39 with passive (scripts/bench-viewer). libgomp
+// reads the policy once, when it is loaded, so `--interactive` starts the program again with
+// it set, unless the user chose a policy.
+void exec_with_passive_openmp(int argc, char** argv) {
+  bool interactive = false;
+  for (int i = 1; i < argc; ++i) interactive |= std::string_view(argv[i]) == "--interactive";
+  if (!interactive || std::getenv("OMP_WAIT_POLICY")) return;
+  ::setenv("OMP_WAIT_POLICY", "passive", 1);
+  ::execv("/proc/self/exe", argv);  // returns only on failure: go on as we are
+}
+
 int main(int argc, char** argv) {
+  exec_with_passive_openmp(argc, argv);
   // Each progress and report line reaches a pipe or a log file as it is printed.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::optional<rt2cpr::Options> options;

@@ -51,23 +51,53 @@ Extra lights (--lights beyond the scene's own) are white, on a ring above the sc
 template <class Given>
 void check_paths(const Options& o, Given&& given) {
   for (const auto& [flag, value] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
-                                    {"--stats", &o.stats}, {"--reference", &o.reference}})
+                                    {"--stats", &o.stats}, {"--reference", &o.reference},
+                                    {"--camera", &o.camera}})
     if (given(flag) && value->empty()) throw rt2::Error(std::string(flag) + ": empty file name");
   using rt2::io::same_file;
   if (!o.stats.empty()) {
     if (std::filesystem::path(o.stats).extension() != ".json")
       throw rt2::Error("--stats " + o.stats + ": the statistics file must end in .json");
     for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
-                                      {"--reference", &o.reference},
+                                      {"--reference", &o.reference}, {"--camera", &o.camera},
                                       {"--environment", &o.environment}})
       if (!other->empty() && same_file(o.stats, *other))
         throw rt2::Error("--stats " + o.stats + " is the same file as " + flag + " " + *other);
   }
   if (!o.output.empty())
     for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--reference", &o.reference},
-                                      {"--environment", &o.environment}})
+                                      {"--camera", &o.camera}, {"--environment", &o.environment}})
       if (!other->empty() && same_file(o.output, *other))
         throw rt2::Error("--output " + o.output + " is the same file as " + flag + " " + *other);
+}
+
+// The viewer's options only with --interactive, and the file render's only without.
+template <class Given>
+void check_interactive(const Options& o, Given&& given) {
+  const Interactive& v = o.interactive;
+  if (!v.on) {
+    for (const char* flag : {"--script", "--screenshot-key", "--target-fps", "--frame-log"})
+      if (given(flag)) throw rt2::Error(std::string(flag) + " needs --interactive");
+    return;
+  }
+  for (const char* flag : {"--frames", "--stats", "--reference", "--time-budget",
+                           "--animate-lights", "--passes"})
+    if (given(flag)) throw rt2::Error(std::string(flag) + " does not apply to --interactive");
+  for (const auto& [flag, value] : {std::pair{"--script", &v.script}, {"--frame-log", &v.frame_log},
+                                    {"--screenshot-key", &v.screenshot_key}})
+    if (given(flag) && value->empty()) throw rt2::Error(std::string(flag) + ": empty value");
+  if (!(v.target_fps >= 0.0 && v.target_fps <= 1000.0))
+    throw rt2::Error("target-fps must be in [0, 1000] (0 = never lower the resolution), got " +
+                     std::to_string(v.target_fps));
+  if (!v.frame_log.empty()) {
+    if (std::filesystem::path(v.frame_log).extension() != ".csv")
+      throw rt2::Error("--frame-log " + v.frame_log + ": the frame log must end in .csv");
+    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
+                                      {"--script", &v.script}, {"--camera", &o.camera},
+                                      {"--environment", &o.environment}})
+      if (!other->empty() && rt2::io::same_file(v.frame_log, *other))
+        throw rt2::Error("--frame-log " + v.frame_log + " is the same file as " + flag + " " + *other);
+  }
 }
 
 // --light-range: "R" or "LO,HI", each in (0, 1e15], LO <= HI.
@@ -133,6 +163,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
       ->default_str("");
   app.add_option("--scene", o.scene, "scene file (.toml), mesh (.obj) or glTF 2.0 (.gltf/.glb)")
       ->default_str("built-in scene");
+  app.add_option("--camera", o.camera, "the camera of a TOML file holding a [camera] table "
+                                      "(what the viewer's C key prints)")
+      ->default_str("the scene's");
   app.add_option("--preset", o.preset, "low | middle | hard | veryhard")->default_str("none");
   app.add_option("--width", width, "image width in pixels");
   app.add_option("--height", height, "image height in pixels");
@@ -195,6 +228,22 @@ std::optional<Options> parse_options(int argc, char** argv) {
       ->default_str("none");
   app.add_option("--reference", o.reference, "reference image: print RMSE, PSNR, SSIM")
       ->default_str("none");
+  app.add_flag("--interactive", o.interactive.on,
+               "open a window and fly through the scene (WASD/arrows, mouse, scroll; F1 "
+               "overlay); the image refines while the camera is still");
+  app.add_option("--script", o.interactive.script,
+                 "--interactive: play the input commands of FILE (wait, key, mouse, "
+                 "screenshot, quit ...; README)")
+      ->default_str("none");
+  app.add_option("--screenshot-key", o.interactive.screenshot_key,
+                 "--interactive: the key that saves the image (to --output, else "
+                 "rt2cpr-N.png)");
+  app.add_option("--target-fps", o.interactive.target_fps,
+                 "--interactive: lower the resolution while moving when frames fall under "
+                 "this rate (0 = never)");
+  app.add_option("--frame-log", o.interactive.frame_log,
+                 "--interactive: write one CSV line per frame shown to FILE.csv")
+      ->default_str("none");
   app.add_flag("--quiet", o.quiet, "print only errors");
   app.add_flag("--version", version, "print the version, commit, compiler and ISA, and exit");
 
@@ -219,6 +268,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
     o.scene = positional_scene;
   }
   check_paths(o, given);
+  check_interactive(o, given);
 
   if (!o.preset.empty()) {
     if (!kPresets.count(o.preset))

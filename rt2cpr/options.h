@@ -14,8 +14,18 @@
 
 namespace rt2cpr {
 
+// The interactive viewer (rt2cpr/viewer/viewer.h).
+struct Interactive {
+  bool on = false;           // --interactive: a window instead of files
+  std::string script;        // --script: input commands to play (viewer/script.h); empty: none
+  std::string screenshot_key = "F12";  // --screenshot-key: the key that saves the image
+  double target_fps = 30.0;  // --target-fps: moving frames below it lower the resolution
+  std::string frame_log;     // --frame-log: one CSV line per frame shown; empty: none
+};
+
 struct Options {
   std::string scene;   // a .toml scene or an .obj; empty: the built-in scene
+  std::string camera;  // --camera: a TOML file holding a [camera] table; empty: the scene's
   std::string preset;  // low | middle | hard | veryhard, or empty
   rt2::RenderSettings render;
   int lights = -1;     // total light count; -1: the scene's own lights
@@ -34,6 +44,7 @@ struct Options {
   std::string stats;   // JSON file; empty: not written
   std::string reference;  // reference image to compare against; empty: none
   bool quiet = false;
+  Interactive interactive;  // --interactive and its options
 };
 
 // Parses argv. Returns nullopt when --help or --version was printed (exit 0). Throws

@@ -400,12 +400,12 @@ void read_camera(const Reader& root, Scene& scene) {
   const toml::node* direction = c.find("direction");
   if (look_at && direction) c.fail(*direction, "camera: give look_at or direction, not both");
   if (!look_at && !direction) c.fail_table("camera needs look_at or direction (one of the two)");
-  vec4 forward = look_at ? vec4(c.vector("look_at", kAny) - position) : c.vector("direction", kAny);
-  if (!(float(dot(forward, forward)) > 0.0f)) {
+  const vec4 given = look_at ? vec4(c.vector("look_at", kAny) - position) : c.vector("direction", kAny);
+  if (!(float(dot(given, given)) > 0.0f)) {
     if (look_at) c.fail(*look_at, "camera.look_at must differ from camera.position");
     c.fail(*direction, "camera.direction must not be zero");
   }
-  forward = normalize(forward);
+  const vec4 forward = normalize(given);
 
   const toml::node* up_node = c.find("up");
   const vec4 up = c.vector("up", vec4(0.0f, 1.0f, 0.0f), kAny);
@@ -419,7 +419,7 @@ void read_camera(const Reader& root, Scene& scene) {
   }
   const float fov = c.number("fov", 60.0f, kFov);
   try {
-    scene.camera = Camera(position, forward, unit_up, fov);
+    scene.camera = Camera::from_file_values(position, given, up, fov);
   } catch (const Error& e) {  // checked above; kept so a message could never lose its place
     c.fail_table(std::string("camera: ") + e.what());
   }
@@ -695,6 +695,16 @@ Scene read_toml_scene(const std::string& path) {
   read_meshes(root, scene, folder);
   validate(path, scene);
   return scene;
+}
+
+Camera read_toml_camera(const std::string& path) {
+  const std::string text = read_file(path, kMaxSceneBytes, "");
+  check_encoding(path, text);
+  TomlScreen(path, text).run();
+  const toml::table doc = parse_toml(path, text);
+  Scene scene;
+  read_camera(Reader(path, doc, "", {"camera"}), scene);
+  return scene.camera;
 }
 
 }  // namespace rt2::io

@@ -19,4 +19,8 @@ namespace rt2::io {
 // rt2::Error naming the file, line and column and key path of the problem.
 Scene read_toml_scene(const std::string& path);
 
+// Reads a TOML file that holds only a `[camera]` table, as a scene file's (what the
+// interactive viewer prints): the camera that table describes.
+Camera read_toml_camera(const std::string& path);
+
 }  // namespace rt2::io

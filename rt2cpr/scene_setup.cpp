@@ -1,0 +1,36 @@
+// rt2cpr/scene_setup.cpp — loading and compiling the scene of the options.
+#include "rt2cpr/scene_setup.h"
+
+#include "rt2/builtin_scene.h"
+#include "rt2/error.h"
+#include "rt2/scene_io.h"
+
+namespace rt2cpr {
+
+rt2::Scene load_scene(const Options& o) {
+  rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
+  if (!o.camera.empty()) scene.camera = rt2::load_camera(o.camera);
+  if (o.environment == "none")
+    scene.environment.reset();
+  else if (o.environment == "sky")
+    scene.environment = rt2::EnvironmentDesc{};
+  else if (!o.environment.empty())
+    scene.environment = rt2::EnvironmentDesc{.image = o.environment};
+  return scene;
+}
+
+void set_lights(rt2::Scene& scene, int lights, const std::optional<rt2::RangeInterval>& range) {
+  if (range && !scene.light_field && (lights < 0 || std::size_t(lights) <= scene.lights.size()))
+    throw rt2::Error("--light-range applies to the lights --lights adds and to a scene's "
+                     "[light_field]; this scene has no light field and no lights are added");
+  if (lights >= 0 || range)
+    rt2::set_light_count(scene, lights >= 0 ? std::size_t(lights) : scene.lights.size(), range);
+}
+
+rt2::CompiledScene compile_at_camera(rt2::Scene& scene, const Options& o) {
+  scene.validate();
+  rt2::recenter_on_camera(scene);
+  return rt2::CompiledScene::compile(scene, o.bvh, o.isa);
+}
+
+}  // namespace rt2cpr

@@ -1,0 +1,173 @@
+// rt2cpr/viewer/render_worker.cpp — the worker thread's loop.
+#include "rt2cpr/viewer/render_worker.h"
+
+#include <algorithm>
+#include <new>
+#include <utility>
+
+#include "rt2/display_pixels.h"
+#include "rt2/error.h"
+#include "rt2cpr/scene_setup.h"
+
+namespace rt2cpr::viewer {
+
+namespace {
+
+bool same_point(const rt2::vec4& a, const rt2::vec4& b) {
+  return a.x() == b.x() && a.y() == b.y() && a.z() == b.z();
+}
+
+}  // namespace
+
+RenderWorker::RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown)
+    : base_(std::move(scene)), options_(options), shown_cb_(std::move(shown)) {
+  ViewRequest first;
+  first.camera = base_.camera;
+  first.lights = options.lights;
+  compile_for(first, true);
+  thread_ = std::jthread([this](std::stop_token quit) { run(quit); });
+}
+
+RenderWorker::~RenderWorker() {
+  {
+    const std::lock_guard lock(mutex_);
+    pass_stop_.request_stop();
+  }
+  thread_.request_stop();
+  thread_.join();
+}
+
+void RenderWorker::request(const ViewRequest& r) {
+  const std::lock_guard lock(mutex_);
+  if (have_request_ && r.generation == latest_.generation) return;
+  if (pass_is_still_) pass_stop_.request_stop();  // a moving frame is always finished
+  latest_ = r;
+  have_request_ = true;
+  wake_.notify_all();
+}
+
+bool RenderWorker::take(Shown& out) {
+  const std::lock_guard lock(mutex_);
+  if (!shown_) return false;
+  out = std::move(*shown_);
+  shown_.reset();
+  return true;
+}
+
+std::string RenderWorker::take_error() {
+  const std::lock_guard lock(mutex_);
+  return std::exchange(error_, {});
+}
+
+// The scene with the request's lights, compiled where the request's camera is (a still),
+// or wherever it was last compiled (a moving frame after a change of lights).
+void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
+  const bool lights_changed = r.lights != compiled_lights_;
+  if (compiled_ && !lights_changed && (!at_camera || same_point(centre_, r.camera.position())))
+    return;
+  rt2::Scene scene = base_;
+  set_lights(scene, r.lights, options_.light_range);
+  scene.camera = r.camera;
+  if (!at_camera && compiled_) {  // keep the current origin: only the lights changed
+    scene.camera.translate(centre_ - r.camera.position());
+  }
+  const rt2::vec4 centre = scene.camera.position();
+  auto compiled = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));
+  compiled_ = std::move(compiled);
+  centre_ = centre;
+  compiled_lights_ = r.lights;
+}
+
+void RenderWorker::publish(const rt2::Film& film, Shown&& s) {
+  film.resolve(s.image);
+  rt2::to_display_pixels(s.image, options_.display, s.pixels);
+  {
+    const std::lock_guard lock(mutex_);
+    shown_ = std::move(s);
+  }
+  if (shown_cb_) shown_cb_();
+}
+
+void RenderWorker::run(std::stop_token quit) {
+  for (;;) {
+    ViewRequest r;
+    std::stop_token stop;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, quit, [&] {
+        return have_request_ && (!done_any_ || latest_.generation != done_generation_);
+      });
+      if (quit.stop_requested()) return;
+      r = latest_;
+      pass_stop_ = std::stop_source();
+      stop = pass_stop_.get_token();
+      pass_is_still_ = !r.moving;
+    }
+    bool done = true;
+    try {
+      compile_for(r, !r.moving);
+      rt2::Camera camera = r.camera;
+      camera.translate(-centre_);
+      Shown s;
+      s.moving = r.moving;
+      s.generation = r.generation;
+      if (r.moving) {
+        rt2::RenderSettings st = r.settings;
+        st.width = std::max(1, st.width / r.scale);
+        st.height = std::max(1, st.height / r.scale);
+        st.subpixels = 1;
+        st.passes = 1;
+        if (moving_film_.width() != st.width || moving_film_.height() != st.height)
+          moving_film_ = rt2::Film(st.width, st.height);
+        else
+          moving_film_.clear();
+        const rt2::Renderer renderer(*compiled_, rt2::View{camera, st});
+        const rt2::FrameResult f = rt2::render_pass(renderer, r.schedule, moving_film_, 0);
+        s.ms = f.ms;
+        s.rays = f.rays;
+        publish(moving_film_, std::move(s));
+      } else {
+        rt2::RenderSettings st = r.settings;
+        st.passes = st.subpixels;  // one sample per pixel per pass
+        if (!still_started_ || still_generation_ != r.generation) {
+          still_started_ = true;
+          still_generation_ = r.generation;
+          still_pass_ = 0;
+          if (still_film_.width() != st.width || still_film_.height() != st.height)
+            still_film_ = rt2::Film(st.width, st.height);
+          else
+            still_film_.clear();
+        }
+        const rt2::Renderer renderer(*compiled_, rt2::View{camera, st});
+        const rt2::FrameResult f =
+            rt2::render_pass(renderer, r.schedule, still_film_, still_pass_, {}, stop);
+        if (!f.complete) {
+          still_started_ = false;  // the film holds part of a pass: start again when asked
+          done = false;
+        } else {
+          ++still_pass_;
+          done = still_pass_ == st.passes;
+          s.pass = still_pass_;
+          s.passes = st.passes;
+          s.ms = f.ms;
+          s.rays = f.rays;
+          publish(still_film_, std::move(s));
+        }
+      }
+    } catch (const rt2::Error& e) {
+      const std::lock_guard lock(mutex_);
+      error_ = e.what();
+    } catch (const std::bad_alloc&) {
+      const std::lock_guard lock(mutex_);
+      error_ = "out of memory";
+    }
+    const std::lock_guard lock(mutex_);
+    pass_is_still_ = false;
+    if (done) {
+      done_generation_ = r.generation;
+      done_any_ = true;
+    }
+  }
+}
+
+}  // namespace rt2cpr::viewer

@@ -1,0 +1,516 @@
+// rt2cpr/viewer/viewer.cpp — the window: SDL2 for the window, input and a streaming
+// texture, Dear ImGui for the panel; the images come from the RenderWorker's thread.
+//
+// The window's thread never renders: each turn of its loop reads the input (a user's, or a
+// script's pushed onto the same queue), moves the camera by the time passed, asks the worker
+// for the newest view, and shows the newest image when one has come. It sleeps in
+// SDL_WaitEventTimeout between turns; the worker wakes it with an event when an image is
+// ready.
+#include "rt2cpr/viewer/viewer.h"
+
+#include <SDL.h>
+#include <imgui.h>
+#include <imgui_impl_sdl.h>
+#include <imgui_impl_sdlrenderer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "rt2/error.h"
+#include "rt2/image_io.h"
+#include "rt2/io/output_file.h"
+#include "rt2/srgb.h"
+#include "rt2cpr/scene_setup.h"
+#include "rt2cpr/viewer/controls.h"
+#include "rt2cpr/viewer/fly_camera.h"
+#include "rt2cpr/viewer/frame_log.h"
+#include "rt2cpr/viewer/overlay.h"
+#include "rt2cpr/viewer/render_worker.h"
+#include "rt2cpr/viewer/script_player.h"
+
+namespace rt2cpr::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The camera counts as moving until this long after its last change.
+constexpr double kSettleSeconds = 0.12;
+// The moving frames' resolution divisor: 1 ... kMaxScale.
+constexpr int kMaxScale = 8;
+
+[[noreturn]] void sdl_failed(const char* what) {
+  throw rt2::Error(std::string("--interactive: ") + what + ": " + SDL_GetError());
+}
+
+// SDL, the window, its renderer and Dear ImGui, torn down in reverse order whatever happens.
+class Window {
+ public:
+  Window(int width, int height, const std::string& title) {
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) sdl_failed("no display could be opened");
+    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
+                               width, height, SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
+    if (!window_) sdl_failed("the window could not be created");
+    renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_ACCELERATED);
+    if (!renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    if (!renderer_) sdl_failed("no renderer for the window");
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
+    ImGui::StyleColorsDark();
+    ImGui_ImplSDL2_InitForSDLRenderer(window_);
+    ImGui_ImplSDLRenderer_Init(renderer_);
+    frame_event_ = SDL_RegisterEvents(1);
+  }
+  ~Window() {
+    if (texture_) SDL_DestroyTexture(texture_);
+    ImGui_ImplSDLRenderer_Shutdown();
+    ImGui_ImplSDL2_Shutdown();
+    ImGui::DestroyContext();
+    SDL_DestroyRenderer(renderer_);
+    SDL_DestroyWindow(window_);
+    SDL_Quit();
+  }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  SDL_Window* window() const { return window_; }
+  SDL_Renderer* renderer() const { return renderer_; }
+  // The event type the worker pushes when an image is ready (SDL_PushEvent is thread-safe).
+  Uint32 frame_event() const { return frame_event_; }
+
+  // The image's pixels into the streaming texture (recreated when the size changes).
+  void upload(const Shown& s) {
+    const int w = s.image.width, h = s.image.height;
+    if (!texture_ || w != texture_w_ || h != texture_h_) {
+      if (texture_) SDL_DestroyTexture(texture_);
+      texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING, w, h);
+      if (!texture_) sdl_failed("no texture for the image");
+      texture_w_ = w;
+      texture_h_ = h;
+    }
+    SDL_UpdateTexture(texture_, nullptr, s.pixels.data(), w * 4);
+  }
+
+  // Clears, draws the image scaled to fit with the aspect of `aspect_w` x `aspect_h`, and the
+  // panel's draw data when there is one (not yet presented).
+  void draw(int aspect_w, int aspect_h, ImDrawData* panel) {
+    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
+    SDL_RenderClear(renderer_);
+    if (texture_) {
+      int ww = 0, wh = 0;
+      SDL_GetRendererOutputSize(renderer_, &ww, &wh);
+      const double s = std::min(double(ww) / aspect_w, double(wh) / aspect_h);
+      const int dw = std::max(1, int(std::lround(aspect_w * s)));
+      const int dh = std::max(1, int(std::lround(aspect_h * s)));
+      const SDL_Rect dst{(ww - dw) / 2, (wh - dh) / 2, dw, dh};
+      SDL_RenderCopy(renderer_, texture_, nullptr, &dst);
+    }
+    if (panel) ImGui_ImplSDLRenderer_RenderDrawData(panel);
+  }
+
+  // What the window shows now (after draw, before present), as an image of display values.
+  rt2::Image read_back() const {
+    int ww = 0, wh = 0;
+    SDL_GetRendererOutputSize(renderer_, &ww, &wh);
+    std::vector<std::uint8_t> rgba(std::size_t(ww) * std::size_t(wh) * 4);
+    if (SDL_RenderReadPixels(renderer_, nullptr, SDL_PIXELFORMAT_RGBA32, rgba.data(), ww * 4) != 0)
+      sdl_failed("the window could not be read back");
+    rt2::Image img(ww, wh);
+    for (std::size_t p = 0; p < std::size_t(ww) * std::size_t(wh); ++p)
+      for (std::size_t c = 0; c < 3; ++c)  // decoded: written back as 8-bit sRGB, the same values
+        img.rgb[p * 3 + c] = rt2::srgb_decode(float(rgba[p * 4 + c]) / 255.0f);
+    return img;
+  }
+
+ private:
+  SDL_Window* window_ = nullptr;
+  SDL_Renderer* renderer_ = nullptr;
+  SDL_Texture* texture_ = nullptr;
+  int texture_w_ = 0, texture_h_ = 0;
+  Uint32 frame_event_ = 0;
+};
+
+// The next free rt2cpr-N.png in the current folder.
+std::string next_screenshot_name() {
+  for (int n = 1;; ++n) {
+    const std::string name = "rt2cpr-" + std::to_string(n) + ".png";
+    std::error_code ec;
+    if (!std::filesystem::exists(name, ec)) return name;
+  }
+}
+
+// The moving frames' resolution: one step coarser when they come slower than the target,
+// one finer when the finer one would still make it with a margin (its pixels scale as
+// 1 / scale^2). Decided on the median of the intervals since the last change.
+class ResolutionScaler {
+ public:
+  explicit ResolutionScaler(double target_fps) : target_(target_fps) {}
+  int scale() const { return scale_; }
+  void reset_intervals() { intervals_.clear(); }
+  void add_interval(double seconds) {
+    if (target_ <= 0.0) return;
+    intervals_.push_back(seconds);
+    if (intervals_.size() < 6) return;
+    std::vector<double> v = intervals_;
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    const double fps = 1.0 / v[v.size() / 2];
+    if (fps < target_ && scale_ < kMaxScale) {
+      ++scale_;
+      intervals_.clear();
+    } else if (scale_ > 1) {
+      const double finer = double(scale_ - 1) / double(scale_);
+      if (fps * finer * finer > 1.25 * target_) {
+        --scale_;
+        intervals_.clear();
+      }
+    }
+    if (intervals_.size() > 30) intervals_.erase(intervals_.begin());
+  }
+
+ private:
+  double target_;
+  int scale_ = 1;
+  std::vector<double> intervals_;
+};
+
+class Viewer {
+ public:
+  // `scene`: the options' scene (scene_setup.h load_scene). Compiles it before the window
+  // opens, so that a scene that cannot be rendered is one error line and no window.
+  Viewer(const Options& o, rt2::Scene scene, std::optional<ScriptPlayer> script,
+         SDL_Keycode screenshot_key)
+      : o_(o),
+        script_(std::move(script)),
+        screenshot_key_(screenshot_key),
+        start_camera_(scene.camera),
+        fly_(start_camera_, speed_for(scene)),
+        scaler_(o.interactive.target_fps) {
+    controls_.settings = o.render;
+    controls_.settings.passes = 1;
+    controls_.schedule = o.schedule;
+    controls_.lights = o.lights;
+    // The worker pushes an event when an image is ready; it renders only when asked, after
+    // the window exists.
+    worker_.emplace(std::move(scene), o, [this] {
+      SDL_Event e{};
+      e.type = window_->frame_event();
+      SDL_PushEvent(&e);
+    });
+    window_.emplace(o.render.width, o.render.height,
+                    "rt2 — " + (o.scene.empty() ? std::string("built-in scene") : o.scene));
+    t0_ = Clock::now();
+  }
+
+  // A quarter of the scene's diagonal per second.
+  static float speed_for(const rt2::Scene& scene) {
+    const rt2::Aabb box = scene.bounds();
+    const float diagonal = box.is_empty() ? 0.0f : calc_distance(box.hi, box.lo);
+    return std::isfinite(diagonal) && diagonal > 0.0f ? 0.25f * diagonal : 1.0f;
+  }
+
+  ~Viewer() { worker_.reset(); }  // the worker's thread ends before the window goes
+
+  void run() {
+    double last = now();
+    while (!quit_) {
+      pump_events(busy() ? 4 : 50);
+      const double t = now();
+      move_camera(t - last);
+      last = t;
+      ask_worker(t);
+      take_image(t);
+      if (script_) play_script(t);
+      const std::string error = worker_->take_error();
+      if (!error.empty()) {
+        std::fprintf(stderr, "rt2cpr: %s\n", error.c_str());
+        error_ = error;
+        redraw_ = true;
+      }
+      if (redraw_ || window_shot_) present();
+    }
+    finish();
+  }
+
+ private:
+  double now() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
+  bool moving_keys() const {
+    for (int i = 0; i < SDL_NUM_SCANCODES; ++i)
+      if (held_[std::size_t(i)] && movement(SDL_Scancode(i)).any) return true;
+    return false;
+  }
+  // Something is changing: turn the loop quickly.
+  bool busy() const { return moving_keys() || now() - last_change_ < kSettleSeconds + 0.05 || script_; }
+
+  struct Move {
+    bool any = false;
+    float forward = 0, right = 0, up = 0;
+  };
+  static Move movement(SDL_Scancode k) {
+    switch (k) {
+      case SDL_SCANCODE_W: case SDL_SCANCODE_UP: return {true, 1, 0, 0};
+      case SDL_SCANCODE_S: case SDL_SCANCODE_DOWN: return {true, -1, 0, 0};
+      case SDL_SCANCODE_D: case SDL_SCANCODE_RIGHT: return {true, 0, 1, 0};
+      case SDL_SCANCODE_A: case SDL_SCANCODE_LEFT: return {true, 0, -1, 0};
+      case SDL_SCANCODE_E: case SDL_SCANCODE_PAGEUP: return {true, 0, 0, 1};
+      case SDL_SCANCODE_Q: case SDL_SCANCODE_PAGEDOWN: return {true, 0, 0, -1};
+      default: return {};
+    }
+  }
+
+  void pump_events(int timeout_ms) {
+    SDL_Event e;
+    if (!SDL_WaitEventTimeout(&e, timeout_ms)) return;
+    do handle(e);
+    while (SDL_PollEvent(&e));
+  }
+
+  // The view changed: the worker is asked for it; the window is drawn again when its
+  // image comes (drawing on every turn of the loop would take the CPU from rendering).
+  void changed() {
+    last_change_ = now();
+    ++generation_;
+  }
+
+  void handle(const SDL_Event& e) {
+    ImGui_ImplSDL2_ProcessEvent(&e);
+    const ImGuiIO& io = ImGui::GetIO();
+    switch (e.type) {
+      case SDL_QUIT: quit_ = true; break;
+      case SDL_WINDOWEVENT:
+        if (e.window.event == SDL_WINDOWEVENT_CLOSE) quit_ = true;
+        redraw_ = true;
+        break;
+      case SDL_KEYDOWN:
+        if (io.WantCaptureKeyboard) break;
+        held_[std::size_t(e.key.keysym.scancode)] = true;
+        if (e.key.repeat) break;
+        if (e.key.keysym.sym == screenshot_key_) save_screenshot();
+        switch (e.key.keysym.sym) {
+          case SDLK_r:
+            fly_ = FlyCamera(start_camera_, fly_.speed());
+            changed();
+            break;
+          case SDLK_c:
+            std::fputs(fly_.toml().c_str(), stdout);
+            std::fflush(stdout);
+            break;
+          case SDLK_F1:
+            controls_.overlay = !controls_.overlay;
+            redraw_ = true;
+            break;
+          case SDLK_ESCAPE: quit_ = true; break;
+          default: break;
+        }
+        break;
+      case SDL_KEYUP: held_[std::size_t(e.key.keysym.scancode)] = false; break;
+      case SDL_MOUSEBUTTONDOWN: panel_drag_ = io.WantCaptureMouse; break;
+      case SDL_MOUSEBUTTONUP: panel_drag_ = false; redraw_ = true; break;
+      case SDL_MOUSEMOTION:
+        if ((e.motion.state & (SDL_BUTTON_LMASK | SDL_BUTTON_RMASK)) && !panel_drag_) {
+          fly_.turn(float(e.motion.xrel), float(e.motion.yrel));
+          changed();
+        } else if (controls_.overlay) {
+          redraw_ = true;  // the panel follows the pointer
+        }
+        break;
+      case SDL_MOUSEWHEEL:
+        if (!io.WantCaptureMouse) fly_.scale_speed(float(e.wheel.y));
+        redraw_ = true;
+        break;
+      default:
+        if (e.type == window_->frame_event()) redraw_ = true;
+        break;
+    }
+  }
+
+  void move_camera(double seconds) {
+    Move m;
+    for (int i = 0; i < SDL_NUM_SCANCODES; ++i) {
+      if (!held_[std::size_t(i)]) continue;
+      const Move k = movement(SDL_Scancode(i));
+      m.any |= k.any;
+      m.forward += k.forward;
+      m.right += k.right;
+      m.up += k.up;
+    }
+    if (!m.any) return;
+    const bool fast = held_[SDL_SCANCODE_LSHIFT] || held_[SDL_SCANCODE_RSHIFT];
+    const float s = float(std::min(seconds, 0.25)) * (fast ? 4.0f : 1.0f);
+    fly_.move(std::clamp(m.forward, -1.0f, 1.0f), std::clamp(m.right, -1.0f, 1.0f),
+              std::clamp(m.up, -1.0f, 1.0f), s);
+    changed();
+  }
+
+  void ask_worker(double t) {
+    const bool moving = t - last_change_ < kSettleSeconds;
+    if (moving != moving_) {
+      moving_ = moving;
+      ++generation_;
+      if (moving) scaler_.reset_intervals();
+    }
+    ViewRequest r;
+    r.camera = fly_.camera();
+    r.settings = controls_.settings;
+    r.schedule = controls_.schedule;
+    r.lights = controls_.lights;
+    r.moving = moving;
+    r.scale = scaler_.scale();
+    r.generation = generation_;
+    worker_->request(r);
+  }
+
+  void take_image(double t) {
+    Shown s;
+    if (!worker_->take(s)) return;
+    window_->upload(s);
+    if (s.moving && shown_ && shown_->moving && s.generation != shown_->generation)
+      scaler_.add_interval(t - shown_at_);
+    const double interval = t - shown_at_;
+    fps_ = shown_ ? (fps_ > 0.0 ? 0.8 * fps_ + 0.2 / std::max(interval, 1e-6) : 1.0 / std::max(interval, 1e-6)) : 0.0;
+    shown_at_ = t;
+    log_.add({t, s.moving, s.pass, s.passes, s.image.width, s.image.height, s.ms, s.rays.total()});
+    shown_ = std::move(s);
+    redraw_ = true;
+  }
+
+  bool converged() const { return shown_ && shown_->converged() && shown_->generation == generation_; }
+
+  void play_script(double t) {
+    const std::optional<ScriptCommand> c = script_->step(t, converged());
+    if (!c) return;
+    using Op = ScriptCommand::Op;
+    switch (c->op) {
+      case Op::screenshot:
+        if (!shown_) throw rt2::Error(script_->where(*c) + "no image has been shown yet");
+        rt2::write_image(c->name, shown_->image, o_.display);
+        if (!o_.quiet) std::printf("wrote %s\n", c->name.c_str());
+        break;
+      case Op::window_shot: window_shot_ = c->name; break;
+      case Op::set:
+        try {
+          set_control(controls_, c->name, c->value);
+        } catch (const rt2::Error& e) {
+          throw rt2::Error(script_->where(*c) + e.what());
+        }
+        changed();
+        break;
+      case Op::resize:
+        SDL_SetWindowSize(window_->window(), int(c->x), int(c->y));
+        redraw_ = true;
+        break;
+      default: break;
+    }
+  }
+
+  void save_screenshot() {
+    if (!shown_) return;
+    const std::string path = o_.output.empty() ? next_screenshot_name() : o_.output;
+    try {
+      rt2::write_image(path, shown_->image, o_.display);
+      std::printf("wrote %s\n", path.c_str());
+    } catch (const rt2::Error& e) {  // the session goes on
+      std::fprintf(stderr, "rt2cpr: %s\n", e.what());
+    }
+  }
+
+  void present() {
+    redraw_ = false;
+    ImGui_ImplSDLRenderer_NewFrame();
+    ImGui_ImplSDL2_NewFrame();
+    ImGui::NewFrame();
+    if (controls_.overlay) {
+      OverlayInfo info;
+      info.fps = fps_;
+      info.isa = o_.isa;
+      info.scale = scaler_.scale();
+      info.speed = fly_.speed();
+      info.error = error_;
+      if (shown_) {
+        info.render_ms = shown_->ms;
+        info.rays = shown_->rays;
+        info.width = shown_->image.width;
+        info.height = shown_->image.height;
+        info.moving = shown_->moving;
+        info.pass = shown_->pass;
+        info.passes = shown_->passes;
+      }
+      if (draw_overlay(controls_, info)) changed();
+    }
+    ImGui::Render();
+    window_->draw(o_.render.width, o_.render.height, controls_.overlay ? ImGui::GetDrawData() : nullptr);
+    if (window_shot_) {
+      rt2::write_image(*window_shot_, window_->read_back());
+      if (!o_.quiet) std::printf("wrote %s\n", window_shot_->c_str());
+      window_shot_.reset();
+    }
+    SDL_RenderPresent(window_->renderer());
+  }
+
+  void finish() {
+    worker_.reset();
+    if (!o_.interactive.frame_log.empty()) {
+      rt2::io::write_output_file(o_.interactive.frame_log, log_.csv());
+      if (!o_.quiet) std::printf("wrote %s\n", o_.interactive.frame_log.c_str());
+    }
+    if (!o_.quiet) std::printf("%s\n", log_.summary().c_str());
+  }
+
+  const Options& o_;
+  std::optional<ScriptPlayer> script_;
+  SDL_Keycode screenshot_key_;
+  rt2::Camera start_camera_;
+  FlyCamera fly_;
+  ResolutionScaler scaler_;
+  Controls controls_;
+  std::optional<Window> window_;
+  std::optional<RenderWorker> worker_;  // after the window: ends first
+  Clock::time_point t0_;
+
+  std::vector<bool> held_ = std::vector<bool>(SDL_NUM_SCANCODES, false);
+  bool panel_drag_ = false;
+  bool quit_ = false;
+  bool redraw_ = true;
+  bool moving_ = false;
+  double last_change_ = -1e9;
+  std::uint64_t generation_ = 1;
+  std::optional<Shown> shown_;
+  double shown_at_ = 0.0, fps_ = 0.0;
+  std::string error_;
+  std::optional<std::string> window_shot_;
+  FrameLog log_;
+};
+
+}  // namespace
+
+bool available() { return true; }
+
+void run_interactive(const Options& o) {
+  // Everything that can be wrong with the input is found before a window opens.
+  std::optional<ScriptPlayer> script;
+  if (!o.interactive.script.empty())
+    script.emplace(read_script(o.interactive.script), o.interactive.script);
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!x11 || !*x11) && (!wayland || !*wayland))
+    throw rt2::Error("--interactive needs a display, and neither DISPLAY nor WAYLAND_DISPLAY "
+                     "is set (run it on a desktop, or under xvfb-run)");
+  std::string key_name = o.interactive.screenshot_key;
+  std::replace(key_name.begin(), key_name.end(), '_', ' ');
+  const SDL_Keycode key = SDL_GetKeyFromName(key_name.c_str());
+  if (key == SDLK_UNKNOWN)
+    throw rt2::Error("--screenshot-key: unknown key '" + o.interactive.screenshot_key +
+                     "' (SDL's key names, a blank written _: F12, P, Print_Screen ...)");
+  if (!o.output.empty()) rt2::check_writable_image(o.output);
+  if (!o.interactive.frame_log.empty()) rt2::io::check_output_path(o.interactive.frame_log);
+  rt2::check_image_fits(o.render.width, o.render.height);
+  Viewer(o, load_scene(o), std::move(script), key).run();
+}
+
+}  // namespace rt2cpr::viewer
