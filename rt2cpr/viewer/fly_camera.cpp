@@ -51,6 +51,7 @@ void FlyCamera::move(float forward, float right, float up, float seconds) {
 }
 
 void FlyCamera::turn(float dx, float dy) {
+  if (!std::isfinite(dx) || !std::isfinite(dy)) return;
   yaw_ = std::remainder(yaw_ + double(dx) * kRadiansPerPixel, 2.0 * std::numbers::pi);
   pitch_ = std::clamp(pitch_ - double(dy) * kRadiansPerPixel, -kMaxPitch, kMaxPitch);
   const double c = std::cos(pitch_);
@@ -59,6 +60,7 @@ void FlyCamera::turn(float dx, float dy) {
 }
 
 void FlyCamera::scale_speed(float steps) {
+  if (!std::isfinite(steps)) return;
   speed_ = std::clamp(speed_ * std::pow(1.25f, steps), 1e-6f, 1e9f);
 }
 

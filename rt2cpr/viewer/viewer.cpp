@@ -53,7 +53,22 @@ constexpr int kMaxScale = 8;
 class Window {
  public:
   Window(int width, int height, const std::string& title) {
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) sdl_failed("no display could be opened");
+    // A desktop's display only: without one SDL would fall back to drivers that show
+    // nothing (offscreen, a console's framebuffer), and the viewer would run unseen. A user
+    // who sets SDL_VIDEODRIVER chooses for themselves.
+    if (!std::getenv("SDL_VIDEODRIVER")) {
+      const auto set = [](const char* name) { return std::getenv(name) && *std::getenv(name); };
+      std::string drivers = set("DISPLAY") ? "x11" : "";
+      if (set("WAYLAND_DISPLAY")) drivers += drivers.empty() ? "wayland" : ",wayland";
+      SDL_SetHint(SDL_HINT_VIDEODRIVER, drivers.c_str());
+    }
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+      std::string which;
+      for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
+        if (std::getenv(name) && *std::getenv(name))
+          which += std::string(which.empty() ? "" : ", ") + name + "=" + std::getenv(name);
+      sdl_failed(("no display could be opened (" + which + ")").c_str());
+    }
     window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
                                width, height, SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
     if (!window_) sdl_failed("the window could not be created");
@@ -496,17 +511,17 @@ void run_interactive(const Options& o) {
   std::optional<ScriptPlayer> script;
   if (!o.interactive.script.empty())
     script.emplace(read_script(o.interactive.script), o.interactive.script);
-  const char* x11 = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((!x11 || !*x11) && (!wayland || !*wayland))
-    throw rt2::Error("--interactive needs a display, and neither DISPLAY nor WAYLAND_DISPLAY "
-                     "is set (run it on a desktop, or under xvfb-run)");
   std::string key_name = o.interactive.screenshot_key;
   std::replace(key_name.begin(), key_name.end(), '_', ' ');
   const SDL_Keycode key = SDL_GetKeyFromName(key_name.c_str());
   if (key == SDLK_UNKNOWN)
     throw rt2::Error("--screenshot-key: unknown key '" + o.interactive.screenshot_key +
                      "' (SDL's key names, a blank written _: F12, P, Print_Screen ...)");
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!x11 || !*x11) && (!wayland || !*wayland))
+    throw rt2::Error("--interactive needs a display, and neither DISPLAY nor WAYLAND_DISPLAY "
+                     "is set (run it on a desktop, or under xvfb-run)");
   if (!o.output.empty()) rt2::check_writable_image(o.output);
   if (!o.interactive.frame_log.empty()) rt2::io::check_output_path(o.interactive.frame_log);
   rt2::check_image_fits(o.render.width, o.render.height);

@@ -288,3 +288,59 @@ TEST_F(Cli, AMillionMaterialMtlTakesLittleMemory) {
 }
 
 }  // namespace
+
+// --camera: a file holding only a [camera] table replaces the scene's camera. The glass
+// scene rendered with its own camera's table as --camera is the same bits as without it,
+// and another camera gives another image.
+TEST_F(Cli, CameraFileReplacesTheScenesCamera) {
+  const std::string glass = std::string(RT2_SOURCE_DIR) + "/scenes/glass.toml";
+  ASSERT_EQ(run(std::string(kTiny) + " --scene " + glass + " --output " + path("own.exr")).status, 0);
+  // The glass scene's [camera] table, copied out of the file.
+  std::istringstream in(slurp(glass));
+  std::string line, table;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '[') inside = line.rfind("[camera]", 0) == 0;
+    if (inside) table += line + "\n";
+  }
+  ASSERT_NE(table.find("position"), std::string::npos);
+  write("cam.toml", table);
+  const Outcome r = run(std::string(kTiny) + " --scene " + glass + " --camera " + path("cam.toml") +
+                        " --output " + path("given.exr"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(rt2::read_image(path("own.exr")).rgb, rt2::read_image(path("given.exr")).rgb);
+  write("other.toml", "[camera]\nposition = [0, 2, 6]\ndirection = [0, -0.3, -1]\nfov = 50\n");
+  ASSERT_EQ(run(std::string(kTiny) + " --scene " + glass + " --camera " + path("other.toml") +
+                " --output " + path("other.exr")).status, 0);
+  EXPECT_NE(rt2::read_image(path("own.exr")).rgb, rt2::read_image(path("other.exr")).rgb);
+}
+
+TEST_F(Cli, CameraFileWithMoreThanACameraOrABadOneFailsWithItsLine) {
+  write("scene.toml", "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[world]\nambient = [0, 0, 0]\n");
+  expect_clean_failure(run(std::string(kTiny) + " --camera " + path("scene.toml") + " --output " + path("x.png")),
+                       "scene.toml:4");
+  write("nan.toml", "[camera]\nposition = [0, nan, 5]\nlook_at = [0, 0, 0]\n");
+  expect_clean_failure(run(std::string(kTiny) + " --camera " + path("nan.toml") + " --output " + path("x.png")),
+                       "nan.toml:2");
+  expect_clean_failure(run(std::string(kTiny) + " --camera " + path("missing.toml")), "missing.toml");
+  expect_clean_failure(run(std::string(kTiny) + " --camera " + path("x.png") + " --output " + path("x.png")),
+                       "same file");
+  EXPECT_FALSE(fs::exists(path("x.png")));
+}
+
+// The viewer's options need --interactive, and the file render's options that mean nothing
+// in a window are refused with it: one line each, exit 2.
+TEST_F(Cli, ViewerOptionsNeedInteractiveAndFileOptionsAreRefusedWithIt) {
+  for (const char* args : {"--script s.txt", "--target-fps 20", "--frame-log f.csv", "--screenshot-key P"}) {
+    const Outcome r = run(std::string(kTiny) + " " + args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.err.find("needs --interactive"), std::string::npos) << r.err;
+  }
+  for (const char* args : {"--frames 3", "--stats s.json", "--time-budget 1", "--passes 1", "--animate-lights"}) {
+    const Outcome r = run(std::string(kTiny) + " --interactive " + args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.err.find("does not apply to --interactive"), std::string::npos) << r.err;
+  }
+  expect_clean_failure(run("--interactive --target-fps -1"), "target-fps");
+  expect_clean_failure(run("--interactive --frame-log " + path("log.txt")), "must end in .csv");
+}

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,51 @@ TEST(RenderCore, AFilmHoldsThePassesSoFarAndTheirMeanIsAValidImage) {
   film.resolve(two);
   EXPECT_FALSE(identical(partial, two));
   for (float v : two.rgb) EXPECT_TRUE(std::isfinite(v));
+}
+
+// A pass asked to stop renders no tile it has not started: stopped before it begins, the
+// film gains no sample and the result says it is not complete; the same pass unstopped is
+// complete and fills every pixel.
+TEST(RenderCore, AStoppedPassSkipsItsTilesAndSaysItIsIncomplete) {
+  const Scene s = test::glass_scene();
+  const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
+  const Renderer r(c, View{s.camera, settings(2, 2)});
+  for (Backend b : {Backend::serial, Backend::omp, Backend::tbb}) {
+    Film film(48, 36);
+    std::stop_source stop;
+    stop.request_stop();
+    const FrameResult stopped = render_pass(r, Schedule{b, 2, 4, 8}, film, 0, {}, stop.get_token());
+    EXPECT_FALSE(stopped.complete) << backend_name(b);
+    EXPECT_EQ(stopped.rays.primary, 0u);
+    for (int y = 0; y < 36; ++y)
+      for (int x = 0; x < 48; ++x) ASSERT_EQ(film.samples(x, y), 0u);
+    const FrameResult whole = render_pass(r, Schedule{b, 2, 4, 8}, film, 0, {}, std::stop_source().get_token());
+    EXPECT_TRUE(whole.complete);
+    for (int y = 0; y < 36; ++y)
+      for (int x = 0; x < 48; ++x) ASSERT_EQ(film.samples(x, y), 1u);
+  }
+}
+
+// Stopped from the progress callback after the first tile, a pass keeps the tiles it
+// rendered whole (every pixel of a tile has its sample or none) and skips the rest.
+TEST(RenderCore, AStopMidPassLeavesWholeTilesOnly) {
+  const Scene s = test::glass_scene();
+  const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
+  const Renderer r(c, View{s.camera, settings(1, 1)});
+  Film film(48, 36);
+  std::stop_source stop;
+  const Schedule sched{Backend::serial, 1, 1, 8};
+  const FrameResult f = render_pass(r, sched, film, 0, [&](int, int) { stop.request_stop(); },
+                                    stop.get_token());
+  EXPECT_FALSE(f.complete);
+  int filled = 0;
+  for (const Tile& t : make_tiles(sched, 48, 36)) {
+    const std::uint32_t first = film.samples(t.x0, t.y0);
+    for (int y = t.y0; y < t.y1; ++y)
+      for (int x = t.x0; x < t.x1; ++x) ASSERT_EQ(film.samples(x, y), first);
+    filled += first == 1;
+  }
+  EXPECT_EQ(filled, 1);
 }
 
 // ---- a depth-first Whitted tracer over the public queries: the oracle --------------------
