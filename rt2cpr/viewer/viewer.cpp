@@ -246,9 +246,9 @@ class Viewer {
       if (!error.empty()) {
         std::fprintf(stderr, "rt2cpr: %s\n", error.c_str());
         error_ = error;
-        redraw_ = true;
+        redraw_ = std::max(redraw_, 1);
       }
-      if (redraw_ || window_shot_) present();
+      if (redraw_ > 0 || window_shot_) present();
     }
     finish();
   }
@@ -300,9 +300,10 @@ class Viewer {
       case SDL_QUIT: quit_ = true; break;
       case SDL_WINDOWEVENT:
         if (e.window.event == SDL_WINDOWEVENT_CLOSE) quit_ = true;
-        redraw_ = true;
+        redraw_ = std::max(redraw_, 1);
         break;
       case SDL_KEYDOWN:
+        redraw_ = 2;
         if (io.WantCaptureKeyboard) break;
         held_[std::size_t(e.key.keysym.scancode)] = true;
         if (e.key.repeat) break;
@@ -318,29 +319,36 @@ class Viewer {
             break;
           case SDLK_F1:
             controls_.overlay = !controls_.overlay;
-            redraw_ = true;
+            redraw_ = std::max(redraw_, 1);
             break;
           case SDLK_ESCAPE: quit_ = true; break;
           default: break;
         }
         break;
       case SDL_KEYUP: held_[std::size_t(e.key.keysym.scancode)] = false; break;
-      case SDL_MOUSEBUTTONDOWN: panel_drag_ = io.WantCaptureMouse; break;
-      case SDL_MOUSEBUTTONUP: panel_drag_ = false; redraw_ = true; break;
+      case SDL_MOUSEBUTTONDOWN:
+        panel_drag_ = io.WantCaptureMouse;
+        redraw_ = 2;
+        break;
+      case SDL_MOUSEBUTTONUP:
+        panel_drag_ = false;
+        redraw_ = 2;
+        break;
+      case SDL_TEXTINPUT: redraw_ = 2; break;
       case SDL_MOUSEMOTION:
         if ((e.motion.state & (SDL_BUTTON_LMASK | SDL_BUTTON_RMASK)) && !panel_drag_) {
           fly_.turn(float(e.motion.xrel), float(e.motion.yrel));
           changed();
         } else if (controls_.overlay) {
-          redraw_ = true;  // the panel follows the pointer
+          redraw_ = 2;  // the panel follows the pointer
         }
         break;
       case SDL_MOUSEWHEEL:
         if (!io.WantCaptureMouse) fly_.scale_speed(float(e.wheel.y));
-        redraw_ = true;
+        redraw_ = std::max(redraw_, 1);
         break;
       default:
-        if (e.type == window_->frame_event()) redraw_ = true;
+        if (e.type == window_->frame_event()) redraw_ = std::max(redraw_, 1);
         break;
     }
   }
@@ -392,7 +400,7 @@ class Viewer {
     shown_at_ = t;
     log_.add({t, s.moving, s.pass, s.passes, s.image.width, s.image.height, s.ms, s.rays.total()});
     shown_ = std::move(s);
-    redraw_ = true;
+    redraw_ = std::max(redraw_, 1);
   }
 
   bool converged() const { return shown_ && shown_->converged() && shown_->generation == generation_; }
@@ -418,7 +426,7 @@ class Viewer {
         break;
       case Op::resize:
         SDL_SetWindowSize(window_->window(), int(c->x), int(c->y));
-        redraw_ = true;
+        redraw_ = std::max(redraw_, 1);
         break;
       default: break;
     }
@@ -436,7 +444,7 @@ class Viewer {
   }
 
   void present() {
-    redraw_ = false;
+    redraw_ = std::max(0, redraw_ - 1);
     ImGui_ImplSDLRenderer_NewFrame();
     ImGui_ImplSDL2_NewFrame();
     ImGui::NewFrame();
@@ -491,7 +499,9 @@ class Viewer {
   std::vector<bool> held_ = std::vector<bool>(SDL_NUM_SCANCODES, false);
   bool panel_drag_ = false;
   bool quit_ = false;
-  bool redraw_ = true;
+  // Frames to draw: 1 for a new image, 2 after input, since Dear ImGui shows some answers to
+  // input (a combo box's list) a frame later.
+  int redraw_ = 1;
   bool moving_ = false;
   double last_change_ = -1e9;
   std::uint64_t generation_ = 1;
