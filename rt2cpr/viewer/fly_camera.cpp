@@ -14,6 +14,7 @@ namespace {
 
 constexpr double kMaxPitch = 89.0 * std::numbers::pi / 180.0;
 constexpr double kRadiansPerPixel = 0.2 * std::numbers::pi / 180.0;
+constexpr float kMaxCoordinate = 1e15f;
 
 // The coordinate axis (signed) closest to v.
 vec4 nearest_axis(const vec4& v) {
@@ -48,6 +49,10 @@ void FlyCamera::move(float forward, float right, float up, float seconds) {
   // Right of the heading: never parallel to the up axis, whatever the pitch.
   const vec4 r = east_ * float(std::cos(yaw_)) - north_ * float(std::sin(yaw_));
   position_ += (f * forward + r * right + up_ * up) * (speed_ * seconds);
+  // Where a scene file can put a camera (its numbers are at most 1e15), so that the
+  // printed table always reads back.
+  position_ = mlib::clamp(position_, vec4(-kMaxCoordinate, -kMaxCoordinate, -kMaxCoordinate),
+                          vec4(kMaxCoordinate, kMaxCoordinate, kMaxCoordinate));
 }
 
 void FlyCamera::turn(float dx, float dy) {

@@ -21,6 +21,7 @@ class FlyCamera {
 
   // Moves by `seconds` at the current speed along the view direction (forward > 0), the
   // right vector (right > 0) and the up axis (up > 0); each of forward, right, up in [-1, 1].
+  // Coordinates stay within +-1e15, as in a scene file.
   void move(float forward, float right, float up, float seconds);
   // Turns by a mouse motion of (dx, dy) pixels: 0.2 degrees per pixel, right and down
   // positive; the pitch stays within 89 degrees of the horizon.

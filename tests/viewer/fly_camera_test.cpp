@@ -90,6 +90,18 @@ TEST(FlyCamera, LookingStraightDownStillMovesSideways) {
   EXPECT_EQ(p.y(), 10.0f);
 }
 
+// Flown as far as the speed allows, the camera stops where a scene file can still put it,
+// and its printed table reads back.
+TEST(FlyCamera, FarFlightsStopWhereASceneFileCanStillPutTheCamera) {
+  rt2::test::TempDir dir("fly");
+  FlyCamera fly(rt2::make_default_scene().camera, 1.0f);
+  fly.scale_speed(1e6f);
+  for (int i = 0; i < 100; ++i) fly.move(1.0f, 0.5f, -0.3f, 1e6f);
+  const vec4 p = fly.camera().position();
+  for (float v : {p.x(), p.y(), p.z()}) EXPECT_LE(std::fabs(v), 1e15f);
+  EXPECT_TRUE(same_camera(rt2::load_camera(dir.write("cam.toml", fly.toml())), fly.camera()));
+}
+
 TEST(FlyCamera, SpeedStaysWithinItsBounds) {
   FlyCamera fly(rt2::make_default_scene().camera, 1.0f);
   fly.scale_speed(1e6f);
