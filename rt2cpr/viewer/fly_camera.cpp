@@ -1,4 +1,4 @@
-// rt2cpr/viewer/fly_camera.cpp — yaw and pitch about the scene's up axis.
+// rt2cpr/viewer/fly_camera.cpp — yaw and pitch about the scene's up axis, +y.
 #include "rt2cpr/viewer/fly_camera.h"
 
 #include <algorithm>
@@ -27,11 +27,30 @@ vec4 nearest_axis(const vec4& v) {
   return vec4(u[0], u[1], u[2]);
 }
 
+bool same_bits(const vec4& a, const vec4& b) {
+  return a.x() == b.x() && a.y() == b.y() && a.z() == b.z();
+}
+
+// An `up` that, written into a scene file with the start camera's position and direction,
+// gives the start camera bit for bit. A Camera keeps its up made orthogonal to the view, not
+// the one it was given: most scenes give +y (or another axis); a rolled camera's own up
+// gives the same view up to rounding.
+vec4 file_up_of(const rt2::Camera& start) {
+  for (const vec4& up : {vec4(0, 1, 0), nearest_axis(start.up())}) {
+    if (!(std::fabs(float(dot(cross(start.forward(), up), cross(start.forward(), up)))) > 1e-8f)) continue;
+    const rt2::Camera c = rt2::Camera::from_file_values(start.position(), start.forward(), up, start.fov());
+    if (same_bits(c.forward(), start.forward()) && same_bits(c.up(), start.up()) &&
+        same_bits(c.right(), start.right()))
+      return up;
+  }
+  return start.up();
+}
+
 }  // namespace
 
 FlyCamera::FlyCamera(const rt2::Camera& start, float speed)
-    : position_(start.position()), up_(nearest_axis(start.up())), direction_(start.forward()),
-      fov_(start.fov()), speed_(speed) {
+    : position_(start.position()), up_(0.0f, 1.0f, 0.0f), view_up_(file_up_of(start)),
+      direction_(start.forward()), fov_(start.fov()), speed_(speed) {
   const vec4 f = start.forward();
   // The heading: the view direction projected on the horizontal plane; looking straight up
   // or down, the camera's own up vector gives it.
@@ -39,10 +58,8 @@ FlyCamera::FlyCamera(const rt2::Camera& start, float speed)
   if (!(float(dot(flat, flat)) > 1e-12f)) flat = start.up() - up_ * float(dot(start.up(), up_));
   north_ = normalize(flat);
   east_ = cross(north_, up_);
-  yaw_ = 0.0;
   pitch_ = std::clamp(std::asin(std::clamp(double(dot(f, up_)), -1.0, 1.0)), -kMaxPitch, kMaxPitch);
 }
-
 
 void FlyCamera::move(float forward, float right, float up, float seconds) {
   const vec4 f = direction_;
@@ -62,6 +79,7 @@ void FlyCamera::turn(float dx, float dy) {
   const double c = std::cos(pitch_);
   direction_ = north_ * float(c * std::cos(yaw_)) + east_ * float(c * std::sin(yaw_)) +
                up_ * float(std::sin(pitch_));
+  view_up_ = up_;  // first person from now on: no roll
 }
 
 void FlyCamera::scale_speed(float steps) {
@@ -70,7 +88,7 @@ void FlyCamera::scale_speed(float steps) {
 }
 
 rt2::Camera FlyCamera::camera() const {
-  return rt2::Camera::from_file_values(position_, direction_, up_, fov_);
+  return rt2::Camera::from_file_values(position_, direction_, view_up_, fov_);
 }
 
 std::string FlyCamera::toml() const {
@@ -82,7 +100,7 @@ std::string FlyCamera::toml() const {
   char fov[32];
   std::snprintf(fov, sizeof fov, "%.9g", double(fov_));
   return "[camera]\nposition = " + v(position_) + "\ndirection = " + v(direction_) +
-         "\nup = " + v(up_) + "\nfov = " + fov + "\n";
+         "\nup = " + v(view_up_) + "\nfov = " + fov + "\n";
 }
 
 }  // namespace rt2cpr::viewer

@@ -15,8 +15,10 @@ namespace rt2cpr::viewer {
 
 class FlyCamera {
  public:
-  // Starts where `start` is, looking where it looks; "up" is the coordinate axis closest to
-  // `start`'s up (scenes are y-up: +y in practice). Movement speed: `speed` units per second.
+  // Starts as `start`, bit for bit where the scene file's up can be recovered (an axis, as
+  // nearly every scene gives; see file_up_of), else up to rounding with its roll. Turns and
+  // moves up and down about the scene's up axis, +y (scenes are y-up: scene files, glTF,
+  // framed OBJs). Movement speed: `speed` units per second.
   FlyCamera(const rt2::Camera& start, float speed);
 
   // Moves by `seconds` at the current speed along the view direction (forward > 0), the
@@ -41,7 +43,8 @@ class FlyCamera {
   std::string toml() const;
 
  private:
-  rt2::vec4 position_, up_, north_;  // north_: the heading of yaw 0, perpendicular to up_
+  rt2::vec4 position_, up_, north_;  // up_: +y; north_: the heading of yaw 0, perpendicular
+  rt2::vec4 view_up_;                 // the camera's up: the start's until the first turn
   rt2::vec4 east_;                    // north_ x up_
   double yaw_ = 0.0, pitch_ = 0.0;    // radians
   // The view direction: the start camera's until the first turn (so that the first image

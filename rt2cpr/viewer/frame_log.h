@@ -24,7 +24,6 @@ struct FrameRecord {
 class FrameLog {
  public:
   void add(const FrameRecord& r) { frames_.push_back(r); }
-  const std::vector<FrameRecord>& frames() const { return frames_; }
   // time_s,kind,pass,passes,width,height,render_ms,rays: a header line, then one per frame.
   std::string csv() const;
   // Shown frames per second while moving: 1 / the median interval between consecutive

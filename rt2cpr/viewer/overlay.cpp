@@ -10,15 +10,6 @@
 
 namespace rt2cpr::viewer {
 
-namespace {
-
-// A combo box over `names`; true when the choice changed.
-bool choice(const char* label, int& index, const char* const* names, int count) {
-  return ImGui::Combo(label, &index, names, count);
-}
-
-}  // namespace
-
 bool draw_overlay(Controls& c, const OverlayInfo& info) {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.75f);
@@ -39,17 +30,20 @@ bool draw_overlay(Controls& c, const OverlayInfo& info) {
   if (!info.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", info.error.c_str());
   ImGui::Separator();
 
+  // Values typed in (Ctrl+click) are clamped too: a setting out of range would fail every
+  // request.
+  constexpr ImGuiSliderFlags clamp = ImGuiSliderFlags_AlwaysClamp;
   bool changed = false;
   rt2::RenderSettings& s = c.settings;
-  changed |= ImGui::SliderInt("depth", &s.depth, 0, 32);
-  changed |= ImGui::SliderFloat("min-weight", &s.min_weight, 0.0f, 1.0f, "%.3f");
-  if (ImGui::SliderInt("subpixels", &s.subpixels, 1, 64)) {
+  changed |= ImGui::SliderInt("depth", &s.depth, 0, 32, "%d", clamp);
+  changed |= ImGui::SliderFloat("min-weight", &s.min_weight, 0.0f, 1.0f, "%.3f", clamp);
+  if (ImGui::SliderInt("subpixels", &s.subpixels, 1, 64, "%d", clamp)) {
     s.passes = 1;
     changed = true;
   }
   static const char* const patterns[] = {"grid", "circle"};
   int pattern = s.pattern == rt2::Pattern::grid ? 0 : 1;
-  if (choice("pattern", pattern, patterns, 2)) {
+  if (ImGui::Combo("pattern", &pattern, patterns, 2)) {
     s.pattern = rt2::parse_pattern(patterns[pattern]);
     changed = true;
   }
@@ -60,26 +54,26 @@ bool draw_overlay(Controls& c, const OverlayInfo& info) {
   }
   static const char* const tests[] = {"fast", "watertight"};
   int test = s.watertight ? 1 : 0;
-  if (choice("triangle test", test, tests, 2)) {
+  if (ImGui::Combo("triangle test", &test, tests, 2)) {
     s.watertight = test == 1;
     changed = true;
   }
   const int hardware = int(std::max(1u, std::thread::hardware_concurrency()));
   int threads = rt2::effective_threads(c.schedule);
-  if (ImGui::SliderInt("threads", &threads, 1, 2 * hardware)) {
+  if (ImGui::SliderInt("threads", &threads, 1, 2 * hardware, "%d", clamp)) {
     c.schedule.threads = threads;
     changed = true;
   }
   static const char* const backends[] = {"serial", "omp", "tbb"};
   int backend = int(c.schedule.backend);
-  if (choice("backend", backend, backends, 3)) {
+  if (ImGui::Combo("backend", &backend, backends, 3)) {
     c.schedule.backend = rt2::parse_backend(backends[backend]);
     changed = true;
   }
   ImGui::Separator();
-  ImGui::TextUnformatted("WASD/arrows move, Q/E down/up, Shift faster, drag to look,\n"
-                         "wheel: speed, R reset, C print camera, F12 save image,\n"
-                         "F1 this panel, Esc quit");
+  ImGui::Text("WASD/arrows move, Q/E down/up, Shift faster, drag to look,\n"
+              "wheel: speed, R reset, C print camera, %s save image,\n"
+              "F1 this panel, Esc quit", info.screenshot_key.c_str());
   ImGui::End();
   return changed;
 }

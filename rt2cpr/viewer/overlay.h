@@ -21,6 +21,7 @@ struct OverlayInfo {
   int pass = 0, passes = 1;   // the still's
   float speed = 1.0f;         // movement, units per second
   std::string error;          // the last error, or empty
+  std::string screenshot_key = "F12";
 };
 
 // Draws the panel inside an ImGui frame; true when the user changed a control.

@@ -2,6 +2,7 @@
 #include "rt2cpr/viewer/render_worker.h"
 
 #include <algorithm>
+#include <chrono>
 #include <new>
 #include <utility>
 
@@ -29,11 +30,7 @@ RenderWorker::RenderWorker(rt2::Scene scene, const Options& options, std::functi
 }
 
 RenderWorker::~RenderWorker() {
-  {
-    const std::lock_guard lock(mutex_);
-    pass_stop_.request_stop();
-  }
-  thread_.request_stop();
+  thread_.request_stop();  // and through run's stop_callback, the pass under way
   thread_.join();
 }
 
@@ -54,9 +51,9 @@ bool RenderWorker::take(Shown& out) {
   return true;
 }
 
-std::string RenderWorker::take_error() {
+std::optional<RenderWorker::Failure> RenderWorker::take_error() {
   const std::lock_guard lock(mutex_);
-  return std::exchange(error_, {});
+  return std::exchange(error_, std::nullopt);
 }
 
 // The scene with the request's lights, compiled where the request's camera is (a still),
@@ -89,6 +86,12 @@ void RenderWorker::publish(const rt2::Film& film, Shown&& s) {
 }
 
 void RenderWorker::run(std::stop_token quit) {
+  // Quitting drops whatever pass is under way, a moving frame's too.
+  const std::stop_callback on_quit(quit, [this] {
+    const std::lock_guard lock(mutex_);
+    pass_stop_.request_stop();
+  });
+  auto idle_since = std::chrono::steady_clock::now();
   for (;;) {
     ViewRequest r;
     std::stop_token stop;
@@ -103,6 +106,8 @@ void RenderWorker::run(std::stop_token quit) {
       stop = pass_stop_.get_token();
       pass_is_still_ = !r.moving;
     }
+    const double idle_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - idle_since).count();
     bool done = true;
     try {
       compile_for(r, !r.moving);
@@ -111,6 +116,7 @@ void RenderWorker::run(std::stop_token quit) {
       Shown s;
       s.moving = r.moving;
       s.generation = r.generation;
+      s.idle_ms = idle_ms;
       if (r.moving) {
         rt2::RenderSettings st = r.settings;
         st.width = std::max(1, st.width / r.scale);
@@ -122,10 +128,12 @@ void RenderWorker::run(std::stop_token quit) {
         else
           moving_film_.clear();
         const rt2::Renderer renderer(*compiled_, rt2::View{camera, st});
-        const rt2::FrameResult f = rt2::render_pass(renderer, r.schedule, moving_film_, 0);
-        s.ms = f.ms;
-        s.rays = f.rays;
-        publish(moving_film_, std::move(s));
+        const rt2::FrameResult f = rt2::render_pass(renderer, r.schedule, moving_film_, 0, {}, stop);
+        if (f.complete) {  // else quitting
+          s.ms = f.ms;
+          s.rays = f.rays;
+          publish(moving_film_, std::move(s));
+        }
       } else {
         rt2::RenderSettings st = r.settings;
         st.passes = st.subpixels;  // one sample per pixel per pass
@@ -154,13 +162,14 @@ void RenderWorker::run(std::stop_token quit) {
           publish(still_film_, std::move(s));
         }
       }
-    } catch (const rt2::Error& e) {
-      const std::lock_guard lock(mutex_);
-      error_ = e.what();
     } catch (const std::bad_alloc&) {
       const std::lock_guard lock(mutex_);
-      error_ = "out of memory";
+      error_ = Failure{"out of memory", r.generation};
+    } catch (const std::exception& e) {  // rt2::Error, or anything a library throws
+      const std::lock_guard lock(mutex_);
+      error_ = Failure{e.what(), r.generation};
     }
+    idle_since = std::chrono::steady_clock::now();
     const std::lock_guard lock(mutex_);
     pass_is_still_ = false;
     if (done) {

@@ -40,8 +40,8 @@ struct ViewRequest {
   int lights = -1;               // total lights (scene_setup.h set_lights); -1: the scene's
   bool moving = false;           // one quick frame instead of the converged image
   int scale = 1;                 // moving frames: width and height divided by this, >= 1
-  // Changed by the window whenever anything above changes; requests with the generation of
-  // the one under way change nothing.
+  // Changed by the window whenever anything above changes; a request with the generation
+  // of the latest one changes nothing.
   std::uint64_t generation = 0;
 };
 
@@ -52,6 +52,7 @@ struct Shown {
   bool moving = false;
   int pass = 0, passes = 1;         // the still: passes done, of passes
   double ms = 0.0;                  // rendering it (the last pass for a still)
+  double idle_ms = 0.0;             // how long the worker waited for its request
   rt2::RayCounts rays;              // its rays (the last pass for a still)
   std::uint64_t generation = 0;     // of the request it answers
   bool converged() const { return !moving && pass == passes; }
@@ -75,8 +76,13 @@ class RenderWorker {
   // The newest image finished since the last call, moved into `out`; false if none.
   bool take(Shown& out);
   // What went wrong with the last request that failed (a light count the memory does not
-  // hold ...), cleared by the call; empty when nothing did. The previous scene stays.
-  std::string take_error();
+  // hold ...) and that request's generation, cleared by the call; nothing when nothing did.
+  // The previous scene stays.
+  struct Failure {
+    std::string message;
+    std::uint64_t generation = 0;
+  };
+  std::optional<Failure> take_error();
 
  private:
   void run(std::stop_token quit);
@@ -105,7 +111,7 @@ class RenderWorker {
   std::stop_source pass_stop_;
   bool pass_is_still_ = false;
   std::optional<Shown> shown_;
-  std::string error_;
+  std::optional<Failure> error_;
 
   std::jthread thread_;  // started last, by the constructor's body
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "rt2/error.h"
+#include "rt2cpr/viewer/controls.h"
 
 namespace rt2cpr::viewer {
 
@@ -34,17 +35,26 @@ int scancode_of(const std::string& name) {
 
 ScriptPlayer::ScriptPlayer(std::vector<ScriptCommand> script, std::string path)
     : script_(std::move(script)), path_(std::move(path)) {
-  for (const ScriptCommand& c : script_)
+  for (const ScriptCommand& c : script_) {
     if (c.op == Op::key && scancode_of(c.name) == SDL_SCANCODE_UNKNOWN)
       throw rt2::Error(where(c) + "unknown key '" + c.name +
                        "' (SDL's key names, a blank written _: W, Left, F12, Left_Shift ...)");
+    if (c.op == Op::set) {  // each name and value on its own, before the window opens
+      Controls scratch;
+      try {
+        set_control(scratch, c.name, c.value);
+      } catch (const rt2::Error& e) {
+        throw rt2::Error(where(c) + e.what());
+      }
+    }
+  }
 }
 
 std::string ScriptPlayer::where(const ScriptCommand& c) const {
   return path_ + ":" + std::to_string(c.line) + ": ";
 }
 
-std::optional<ScriptCommand> ScriptPlayer::step(double now, bool converged) {
+std::optional<ScriptCommand> ScriptPlayer::step(double now, bool converged, const std::string& failure) {
   if (now < ready_at_) return std::nullopt;
   if (key_down_) {  // the hold is over
     push_key(key_scancode_, false);
@@ -56,6 +66,7 @@ std::optional<ScriptCommand> ScriptPlayer::step(double now, bool converged) {
   if (c.op == Op::wait_still) {
     if (started_at_ < 0.0) started_at_ = now;
     if (!converged) {
+      if (!failure.empty()) throw rt2::Error(where(c) + "the image cannot converge: " + failure);
       if (now - started_at_ > c.seconds)
         throw rt2::Error(where(c) + "the image did not converge within " +
                          std::to_string(int(std::ceil(c.seconds))) + " s");

@@ -21,8 +21,9 @@ class ScriptPlayer {
   // for the viewer to carry out. At most one command per call, so that the events it
   // pushed are read before the next one looks at the view. `converged`: the image shown is
   // the converged still of the current view (wait-still waits for it; past its time it
-  // throws rt2::Error "path:line: ...").
-  std::optional<ScriptCommand> step(double now, bool converged);
+  // throws rt2::Error "path:line: ..."); `failure`: why the current view cannot be rendered,
+  // or empty (wait-still then throws at once, with it).
+  std::optional<ScriptCommand> step(double now, bool converged, const std::string& failure = {});
 
   bool done() const { return next_ == script_.size() && !key_down_; }
   // "path:line: " of the command played last, for the viewer's messages.

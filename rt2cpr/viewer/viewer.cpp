@@ -32,7 +32,9 @@
 #include "rt2cpr/viewer/frame_log.h"
 #include "rt2cpr/viewer/overlay.h"
 #include "rt2cpr/viewer/render_worker.h"
+#include "rt2cpr/viewer/resolution_scaler.h"
 #include "rt2cpr/viewer/script_player.h"
+#include "rt2cpr/viewer/window.h"
 
 namespace rt2cpr::viewer {
 
@@ -42,116 +44,6 @@ using Clock = std::chrono::steady_clock;
 
 // The camera counts as moving until this long after its last change.
 constexpr double kSettleSeconds = 0.12;
-// The moving frames' resolution divisor: 1 ... kMaxScale.
-constexpr int kMaxScale = 8;
-
-[[noreturn]] void sdl_failed(const char* what) {
-  throw rt2::Error(std::string("--interactive: ") + what + ": " + SDL_GetError());
-}
-
-// SDL, the window, its renderer and Dear ImGui, torn down in reverse order whatever happens.
-class Window {
- public:
-  Window(int width, int height, const std::string& title) {
-    // A desktop's display only: without one SDL would fall back to drivers that show
-    // nothing (offscreen, a console's framebuffer), and the viewer would run unseen. A user
-    // who sets SDL_VIDEODRIVER chooses for themselves.
-    if (!std::getenv("SDL_VIDEODRIVER")) {
-      const auto set = [](const char* name) { return std::getenv(name) && *std::getenv(name); };
-      std::string drivers = set("DISPLAY") ? "x11" : "";
-      if (set("WAYLAND_DISPLAY")) drivers += drivers.empty() ? "wayland" : ",wayland";
-      SDL_SetHint(SDL_HINT_VIDEODRIVER, drivers.c_str());
-    }
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-      std::string which;
-      for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
-        if (std::getenv(name) && *std::getenv(name))
-          which += std::string(which.empty() ? "" : ", ") + name + "=" + std::getenv(name);
-      sdl_failed(("no display could be opened (" + which + ")").c_str());
-    }
-    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                               width, height, SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
-    if (!window_) sdl_failed("the window could not be created");
-    renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_ACCELERATED);
-    if (!renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
-    if (!renderer_) sdl_failed("no renderer for the window");
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
-    ImGui::StyleColorsDark();
-    ImGui_ImplSDL2_InitForSDLRenderer(window_);
-    ImGui_ImplSDLRenderer_Init(renderer_);
-    frame_event_ = SDL_RegisterEvents(1);
-  }
-  ~Window() {
-    if (texture_) SDL_DestroyTexture(texture_);
-    ImGui_ImplSDLRenderer_Shutdown();
-    ImGui_ImplSDL2_Shutdown();
-    ImGui::DestroyContext();
-    SDL_DestroyRenderer(renderer_);
-    SDL_DestroyWindow(window_);
-    SDL_Quit();
-  }
-  Window(const Window&) = delete;
-  Window& operator=(const Window&) = delete;
-
-  SDL_Window* window() const { return window_; }
-  SDL_Renderer* renderer() const { return renderer_; }
-  // The event type the worker pushes when an image is ready (SDL_PushEvent is thread-safe).
-  Uint32 frame_event() const { return frame_event_; }
-
-  // The image's pixels into the streaming texture (recreated when the size changes).
-  void upload(const Shown& s) {
-    const int w = s.image.width, h = s.image.height;
-    if (!texture_ || w != texture_w_ || h != texture_h_) {
-      if (texture_) SDL_DestroyTexture(texture_);
-      texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGBA32, SDL_TEXTUREACCESS_STREAMING, w, h);
-      if (!texture_) sdl_failed("no texture for the image");
-      texture_w_ = w;
-      texture_h_ = h;
-    }
-    SDL_UpdateTexture(texture_, nullptr, s.pixels.data(), w * 4);
-  }
-
-  // Clears, draws the image scaled to fit with the aspect of `aspect_w` x `aspect_h`, and the
-  // panel's draw data when there is one (not yet presented).
-  void draw(int aspect_w, int aspect_h, ImDrawData* panel) {
-    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
-    SDL_RenderClear(renderer_);
-    if (texture_) {
-      int ww = 0, wh = 0;
-      SDL_GetRendererOutputSize(renderer_, &ww, &wh);
-      const double s = std::min(double(ww) / aspect_w, double(wh) / aspect_h);
-      const int dw = std::max(1, int(std::lround(aspect_w * s)));
-      const int dh = std::max(1, int(std::lround(aspect_h * s)));
-      const SDL_Rect dst{(ww - dw) / 2, (wh - dh) / 2, dw, dh};
-      SDL_RenderCopy(renderer_, texture_, nullptr, &dst);
-    }
-    if (panel) ImGui_ImplSDLRenderer_RenderDrawData(panel);
-  }
-
-  // What the window shows now (after draw, before present), as an image of display values.
-  rt2::Image read_back() const {
-    int ww = 0, wh = 0;
-    SDL_GetRendererOutputSize(renderer_, &ww, &wh);
-    std::vector<std::uint8_t> rgba(std::size_t(ww) * std::size_t(wh) * 4);
-    if (SDL_RenderReadPixels(renderer_, nullptr, SDL_PIXELFORMAT_RGBA32, rgba.data(), ww * 4) != 0)
-      sdl_failed("the window could not be read back");
-    rt2::Image img(ww, wh);
-    for (std::size_t p = 0; p < std::size_t(ww) * std::size_t(wh); ++p)
-      for (std::size_t c = 0; c < 3; ++c)  // decoded: written back as 8-bit sRGB, the same values
-        img.rgb[p * 3 + c] = rt2::srgb_decode(float(rgba[p * 4 + c]) / 255.0f);
-    return img;
-  }
-
- private:
-  SDL_Window* window_ = nullptr;
-  SDL_Renderer* renderer_ = nullptr;
-  SDL_Texture* texture_ = nullptr;
-  int texture_w_ = 0, texture_h_ = 0;
-  Uint32 frame_event_ = 0;
-};
-
 // The next free rt2cpr-N.png in the current folder.
 std::string next_screenshot_name() {
   for (int n = 1;; ++n) {
@@ -160,40 +52,6 @@ std::string next_screenshot_name() {
     if (!std::filesystem::exists(name, ec)) return name;
   }
 }
-
-// The moving frames' resolution: one step coarser when they come slower than the target,
-// one finer when the finer one would still make it with a margin (its pixels scale as
-// 1 / scale^2). Decided on the median of the intervals since the last change.
-class ResolutionScaler {
- public:
-  explicit ResolutionScaler(double target_fps) : target_(target_fps) {}
-  int scale() const { return scale_; }
-  void reset_intervals() { intervals_.clear(); }
-  void add_interval(double seconds) {
-    if (target_ <= 0.0) return;
-    intervals_.push_back(seconds);
-    if (intervals_.size() < 6) return;
-    std::vector<double> v = intervals_;
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    const double fps = 1.0 / v[v.size() / 2];
-    if (fps < target_ && scale_ < kMaxScale) {
-      ++scale_;
-      intervals_.clear();
-    } else if (scale_ > 1) {
-      const double finer = double(scale_ - 1) / double(scale_);
-      if (fps * finer * finer > 1.25 * target_) {
-        --scale_;
-        intervals_.clear();
-      }
-    }
-    if (intervals_.size() > 30) intervals_.erase(intervals_.begin());
-  }
-
- private:
-  double target_;
-  int scale_ = 1;
-  std::vector<double> intervals_;
-};
 
 class Viewer {
  public:
@@ -230,8 +88,6 @@ class Viewer {
     return std::isfinite(diagonal) && diagonal > 0.0f ? 0.25f * diagonal : 1.0f;
   }
 
-  ~Viewer() { worker_.reset(); }  // the worker's thread ends before the window goes
-
   void run() {
     double last = now();
     while (!quit_) {
@@ -242,12 +98,7 @@ class Viewer {
       ask_worker(t);
       take_image(t);
       if (script_) play_script(t);
-      const std::string error = worker_->take_error();
-      if (!error.empty()) {
-        std::fprintf(stderr, "rt2cpr: %s\n", error.c_str());
-        error_ = error;
-        redraw_ = std::max(redraw_, 1);
-      }
+      take_error();
       if (redraw_ > 0 || window_shot_) present();
     }
     finish();
@@ -261,7 +112,9 @@ class Viewer {
     return false;
   }
   // Something is changing: turn the loop quickly.
-  bool busy() const { return moving_keys() || now() - last_change_ < kSettleSeconds + 0.05 || script_; }
+  bool busy() const {
+    return moving_keys() || now() - last_change_ < kSettleSeconds + 0.05 || (script_ && !script_->done());
+  }
 
   struct Move {
     bool any = false;
@@ -307,7 +160,10 @@ class Viewer {
         if (io.WantCaptureKeyboard) break;
         held_[std::size_t(e.key.keysym.scancode)] = true;
         if (e.key.repeat) break;
-        if (e.key.keysym.sym == screenshot_key_) save_screenshot();
+        if (e.key.keysym.sym == screenshot_key_) {
+          save_screenshot();
+          break;
+        }
         switch (e.key.keysym.sym) {
           case SDLK_r:
             fly_ = FlyCamera(start_camera_, fly_.speed());
@@ -376,7 +232,7 @@ class Viewer {
     if (moving != moving_) {
       moving_ = moving;
       ++generation_;
-      if (moving) scaler_.reset_intervals();
+      if (moving) scaler_.restart();
     }
     ViewRequest r;
     r.camera = fly_.camera();
@@ -393,10 +249,11 @@ class Viewer {
     Shown s;
     if (!worker_->take(s)) return;
     window_->upload(s);
-    if (s.moving && shown_ && shown_->moving && s.generation != shown_->generation)
-      scaler_.add_interval(t - shown_at_);
-    const double interval = t - shown_at_;
-    fps_ = shown_ ? (fps_ > 0.0 ? 0.8 * fps_ + 0.2 / std::max(interval, 1e-6) : 1.0 / std::max(interval, 1e-6)) : 0.0;
+    // The renderer's time for this frame: since the last one shown, less its wait for work.
+    const double busy = t - shown_at_ - s.idle_ms * 1e-3;
+    if (s.moving && shown_ && shown_->moving) scaler_.add(busy);
+    // Images per second the renderer delivers, smoothed over the last few.
+    if (shown_ && busy > 0.0) rate_ = rate_ > 0.0 ? 0.8 * rate_ + 0.2 / busy : 1.0 / busy;
     shown_at_ = t;
     log_.add({t, s.moving, s.pass, s.passes, s.image.width, s.image.height, s.ms, s.rays.total()});
     shown_ = std::move(s);
@@ -405,8 +262,21 @@ class Viewer {
 
   bool converged() const { return shown_ && shown_->converged() && shown_->generation == generation_; }
 
+  // The worker's failures: each new message printed once (a failing setting fails every
+  // request, many a second while moving), and kept for the panel and the script.
+  void take_error() {
+    std::optional<RenderWorker::Failure> f = worker_->take_error();
+    if (!f) return;
+    if (!error_ || error_->message != f->message)
+      std::fprintf(stderr, "rt2cpr: %s\n", f->message.c_str());
+    error_ = std::move(f);
+    redraw_ = std::max(redraw_, 1);
+  }
+
   void play_script(double t) {
-    const std::optional<ScriptCommand> c = script_->step(t, converged());
+    const bool failed = error_ && error_->generation == generation_;
+    const std::optional<ScriptCommand> c =
+        script_->step(t, converged(), failed ? error_->message : std::string());
     if (!c) return;
     using Op = ScriptCommand::Op;
     switch (c->op) {
@@ -437,7 +307,7 @@ class Viewer {
     const std::string path = o_.output.empty() ? next_screenshot_name() : o_.output;
     try {
       rt2::write_image(path, shown_->image, o_.display);
-      std::printf("wrote %s\n", path.c_str());
+      if (!o_.quiet) std::printf("wrote %s\n", path.c_str());
     } catch (const rt2::Error& e) {  // the session goes on
       std::fprintf(stderr, "rt2cpr: %s\n", e.what());
     }
@@ -450,11 +320,12 @@ class Viewer {
     ImGui::NewFrame();
     if (controls_.overlay) {
       OverlayInfo info;
-      info.fps = fps_;
+      info.fps = rate_;
       info.isa = o_.isa;
       info.scale = scaler_.scale();
       info.speed = fly_.speed();
-      info.error = error_;
+      info.error = error_ ? error_->message : std::string();
+      info.screenshot_key = SDL_GetKeyName(screenshot_key_);
       if (shown_) {
         info.render_ms = shown_->ms;
         info.rays = shown_->rays;
@@ -506,8 +377,8 @@ class Viewer {
   double last_change_ = -1e9;
   std::uint64_t generation_ = 1;
   std::optional<Shown> shown_;
-  double shown_at_ = 0.0, fps_ = 0.0;
-  std::string error_;
+  double shown_at_ = 0.0, rate_ = 0.0;
+  std::optional<RenderWorker::Failure> error_;  // the last one
   std::optional<std::string> window_shot_;
   FrameLog log_;
 };
@@ -526,7 +397,7 @@ void run_interactive(const Options& o) {
   const SDL_Keycode key = SDL_GetKeyFromName(key_name.c_str());
   if (key == SDLK_UNKNOWN)
     throw rt2::Error("--screenshot-key: unknown key '" + o.interactive.screenshot_key +
-                     "' (SDL's key names, a blank written _: F12, P, Print_Screen ...)");
+                     "' (SDL's key names, a blank written _: F12, P, PrintScreen, Left_Ctrl ...)");
   const char* x11 = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((!x11 || !*x11) && (!wayland || !*wayland))

@@ -36,6 +36,23 @@ TEST(FlyCamera, StartsAsTheScenesCameraBitForBit) {
   EXPECT_TRUE(same_camera(FlyCamera(glass, 1.0f).camera(), glass));
 }
 
+// A rolled camera (its up not an axis) keeps its roll until the first turn: its view is the
+// scene's up to rounding, and its printed table still reads back bit for bit.
+TEST(FlyCamera, ARolledCameraKeepsItsRollUntilTheFirstTurn) {
+  rt2::test::TempDir dir("fly");
+  const rt2::Camera rolled(vec4(1, 2, 3), vec4(0.2f, -0.1f, -1), vec4(0.3f, 1, 0), 50.0f);
+  FlyCamera fly(rolled, 1.0f);
+  const rt2::Camera c = fly.camera();
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(c.up()[i], rolled.up()[i], 1e-6f);
+    EXPECT_NEAR(c.right()[i], rolled.right()[i], 1e-6f);
+    EXPECT_EQ(c.forward()[i], rolled.forward()[i]);
+  }
+  EXPECT_TRUE(same_camera(rt2::load_camera(dir.write("cam.toml", fly.toml())), c));
+  fly.turn(1.0f, 0.0f);
+  EXPECT_NEAR(fly.camera().right().y(), 0.0f, 1e-6f);  // level: first person, no roll
+}
+
 // The property the viewer's `C` key rests on: whatever the moves and turns, the printed
 // table, read as a scene file's camera is read, is the camera the viewer renders through.
 TEST(FlyCamera, PrintedTableReadsBackAsTheSameCameraBitForBit) {

@@ -161,7 +161,7 @@ TEST_F(Interactive, TheScreenshotKeyWritesTheImage) {
 // Closed while a long still renders: the window goes at once, exit 0; the frame log says
 // what was shown.
 TEST_F(Interactive, QuittingMidRenderEndsCleanlyAndWritesTheFrameLog) {
-  write("s.txt", "key W 0.2\nwait 0.3\nquit\n");
+  write("s.txt", "wait 1\nkey W 0.2\nwait 0.3\nquit\n");
   const Outcome r = run_window("--width 200 --height 150 --subpixels 4096 --script s.txt --frame-log log.csv");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string log = slurp(path("log.csv"));
@@ -195,6 +195,40 @@ TEST_F(Interactive, ABadScriptIsOneLineWithItsFileAndLine) {
   write("key.txt", "key Hyperdrive\n");
   expect_clean_failure(run("--interactive --script " + path("key.txt")), "key.txt:1: unknown key 'Hyperdrive'");
   expect_clean_failure(run("--interactive --screenshot-key Hyperdrive"), "unknown key 'Hyperdrive'");
+  write("set.txt", "wait 1\nset detph 8\n");
+  expect_clean_failure(run("--interactive --script " + path("set.txt")), "set.txt:2: unknown setting 'detph'");
+  write("value.txt", "set depth -3\n");
+  expect_clean_failure(run("--interactive --script " + path("value.txt")), "value.txt:1: depth must be");
+}
+
+// R takes the camera back to the scene's: the still is the file render of the scene.
+TEST_F(Interactive, ResetReturnsToTheScenesCamera) {
+  write("s.txt", "key W 0.3\nmouse 40 20\nscroll 3\nkey A 0.2\nkey R\nwait-still\nscreenshot r.exr\nquit\n");
+  const Outcome r = run_window(std::string(kSize) + " --script s.txt");
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(run(std::string(kSize) + " --quiet --output " + path("ref.exr")).status, 0);
+  EXPECT_EQ(rt2::read_image(path("r.exr")).rgb, rt2::read_image(path("ref.exr")).rgb);
+}
+
+// Frames slower than --target-fps lower the resolution: with a target no frame can meet,
+// the moving frames shrink (the frame log says so) and the still is full size again.
+TEST_F(Interactive, MovingFramesUnderTheTargetRateLowerTheResolution) {
+  write("s.txt", "key W 1.5\nwait-still\nquit\n");
+  const Outcome r = run_window("--width 160 --height 120 --target-fps 1000 --script s.txt --frame-log log.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string log = slurp(path("log.csv"));
+  EXPECT_NE(log.find(",moving,0,1,80,60,"), std::string::npos) << log;  // 1/2
+  EXPECT_NE(log.find(",still,1,1,160,120,"), std::string::npos) << log;
+}
+
+// A setting the scene cannot take fails every request: wait-still says why at once, and
+// the run fails naming the script's line.
+TEST_F(Interactive, WaitStillFailsAtOnceWhenTheViewCannotBeRendered) {
+  write("s.txt", "set lights 1\nwait-still\nquit\n");  // --light-range then applies to no light
+  const Outcome r = run_window(std::string(kSize) + " --lights 3 --light-range 2 --script s.txt");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("s.txt:2: the image cannot converge: --light-range applies"), std::string::npos)
+      << r.err;
 }
 
 // A still that cannot converge in the time the script allows fails the run, naming the line.

@@ -181,12 +181,14 @@ TEST(RenderWorker, AFailedRequestIsReportedAndTheNextOneRenders) {
   ViewRequest r = request(o, load_scene(o).camera, false, 1);
   r.lights = -1;  // the scene's own: nothing takes --light-range
   w->request(r);
-  std::string error;
-  for (int i = 0; i < 5000 && error.empty(); ++i) {
+  std::optional<RenderWorker::Failure> error;
+  for (int i = 0; i < 5000 && !error; ++i) {
     error = w->take_error();
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  EXPECT_NE(error.find("--light-range"), std::string::npos) << error;
+  ASSERT_TRUE(error);
+  EXPECT_NE(error->message.find("--light-range"), std::string::npos) << error->message;
+  EXPECT_EQ(error->generation, 1u);
   r.lights = 4;
   r.generation = 2;
   w->request(r);
@@ -197,23 +199,35 @@ TEST(RenderWorker, AFailedRequestIsReportedAndTheNextOneRenders) {
 TEST(RenderWorker, ASceneThatCannotBeRenderedThrowsBeforeAnyThread) {
   Options o = small_options();
   o.environment = "/nonexistent/sky.exr";
-  EXPECT_THROW(RenderWorker(load_scene(o), o, {}), rt2::Error);
+  rt2::Scene scene = load_scene(o);  // loads: the image is opened when the scene compiles
+  EXPECT_THROW(RenderWorker(std::move(scene), o, {}), rt2::Error);
 }
 
-// Destroyed while a long still renders: the pass under way is dropped and the thread ends
-// (the test would hang otherwise).
-TEST(RenderWorker, DestroyedMidStillEndsItsThread) {
+// Destroyed while a long pass renders, the worker drops it between tiles: the pass after
+// the first one shown is never finished, let alone shown. (A worker that finished its pass
+// before ending would show a second one: each pass here takes far longer than the test's
+// thread needs to wake and destroy it.)
+TEST(RenderWorker, DestroyedMidPassDropsThePassUnderWay) {
   Options o = small_options();
-  o.render.width = 320;
-  o.render.height = 240;
+  o.render.width = 640;
+  o.render.height = 480;
+  o.render.depth = 16;
   o.render.subpixels = 1024;
-  o.schedule.tile = 0;
+  o.schedule = rt2::Schedule{rt2::Backend::serial, 1, 1, 16};
+  int shown = 0;
+  std::mutex m;
+  std::condition_variable cv;
   {
-    Worker w(o);
-    w->request(request(o, load_scene(o).camera, false, 1));
-    w.wait_for([](const Shown& s) { return s.pass >= 1; });
+    RenderWorker w(load_scene(o), o, [&] {
+      const std::lock_guard lock(m);
+      ++shown;
+      cv.notify_all();
+    });
+    w.request(request(o, load_scene(o).camera, false, 1));
+    std::unique_lock lock(m);
+    cv.wait(lock, [&] { return shown >= 1; });
   }
-  SUCCEED();
+  EXPECT_EQ(shown, 1);
 }
 
 }  // namespace
