@@ -119,10 +119,10 @@ int main(int argc, char** argv) {
   // Each progress and report line reaches a pipe or a log file as it is printed.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   rt2cpr::Job job(argc, argv);
-  // A failure is printed once, by the leader; every process exits with its status.
+  // A failure is printed once, by the leader; the job ends with its status.
   const auto fail = [&](int status) {
     if (job.leader()) std::fprintf(stderr, "rt2cpr: %s\n", rt2cpr::failure_message().c_str());
-    return status;
+    return job.fail(status);
   };
   std::optional<rt2cpr::Options> options;
   try {

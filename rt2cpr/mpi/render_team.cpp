@@ -1,0 +1,72 @@
+// rt2cpr/mpi/render_team.cpp — whole tiles on the rank's threads (see render_team.h).
+#include "rt2cpr/mpi/render_team.h"
+
+#include "rt2cpr/clock.h"
+
+namespace rt2cpr::mpi {
+
+std::uint64_t render_whole_tile(const rt2::Renderer& renderer, rt2::Film& film,
+                                const rt2::Tile& tile, float* rgb, rt2::RayCounts& rays) {
+  for (int p = 0; p < renderer.settings().passes; ++p) renderer.render_tile(tile, p, film, rays);
+  const std::uint64_t nonfinite = film.resolve(tile, rgb);
+  film.clear(tile);
+  return nonfinite;
+}
+
+RenderTeam::RenderTeam(const rt2::Renderer& renderer, rt2::Film& film,
+                       const rt2::Schedule& schedule, Next next, Done done)
+    : next_(std::move(next)), done_(std::move(done)), thread_([this, &renderer, &film, schedule] {
+        const auto work = [&](int) { loop(renderer, film); };
+        const int threads = rt2::effective_threads(schedule);
+        try {
+          switch (schedule.backend) {
+            case rt2::Backend::serial: rt2::detail::run_serial(1, work); break;
+            case rt2::Backend::omp: rt2::detail::run_omp(threads, threads, work); break;
+            case rt2::Backend::tbb: rt2::detail::run_tbb(threads, threads, work); break;
+          }
+        } catch (...) {  // the backend itself (a loop catches its own)
+          record_failure();
+        }
+      }) {}
+
+RenderTeam::~RenderTeam() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void RenderTeam::loop(const rt2::Renderer& renderer, rt2::Film& film) {
+  FrameTally mine;
+  try {
+    while (!stop_ && !failed_) {
+      const std::optional<TileOrder> order = next_();
+      if (!order) break;
+      const auto t0 = Clock::now();
+      std::vector<float> rgb(order->tile.pixels() * 3);
+      mine.nonfinite_pixels += render_whole_tile(renderer, film, order->tile, rgb.data(), mine.rays);
+      mine.busy_ms += ms_since(t0);
+      ++mine.tiles;
+      done_(*order, std::move(rgb));
+    }
+  } catch (...) {
+    record_failure();
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  tally_.rays += mine.rays;
+  tally_.tiles += mine.tiles;
+  tally_.nonfinite_pixels += mine.nonfinite_pixels;
+  tally_.busy_ms += mine.busy_ms;
+}
+
+void RenderTeam::record_failure() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!failure_) failure_ = std::current_exception();
+  failed_ = true;
+}
+
+FrameTally RenderTeam::join() {
+  if (thread_.joinable()) thread_.join();
+  if (failure_) std::rethrow_exception(failure_);
+  return tally_;
+}
+
+}  // namespace rt2cpr::mpi

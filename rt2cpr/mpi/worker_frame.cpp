@@ -1,0 +1,85 @@
+// rt2cpr/mpi/worker_frame.cpp — asking for tiles, rendering them, sending them back (see
+// worker_frame.h).
+#include "rt2cpr/mpi/worker_frame.h"
+
+#include <cstring>
+
+#include "rt2/error.h"
+#include "rt2cpr/mpi/channel.h"
+#include "rt2cpr/mpi/protocol.h"
+#include "rt2cpr/mpi/render_team.h"
+#include "rt2cpr/mpi/sender.h"
+
+namespace rt2cpr::mpi {
+namespace {
+
+struct Finished {
+  std::int32_t index;
+  std::vector<float> rgb;
+};
+
+// A kResult message: the tile's index, then its means.
+std::vector<std::byte> result_message(const Finished& f) {
+  std::vector<std::byte> bytes(sizeof f.index + f.rgb.size() * sizeof(float));
+  std::memcpy(bytes.data(), &f.index, sizeof f.index);
+  std::memcpy(bytes.data() + sizeof f.index, f.rgb.data(), f.rgb.size() * sizeof(float));
+  return bytes;
+}
+
+}  // namespace
+
+FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
+                               const rt2::Schedule& schedule) {
+  Channel<TileOrder> orders;
+  Channel<Finished> finished;
+  RenderTeam team(renderer, film, schedule, [&] { return orders.pop(); },
+                  [&](const TileOrder& order, std::vector<float>&& rgb) {
+                    finished.push({order.index, std::move(rgb)});
+                  });
+  // However this function ends, the loops waiting for an order are released before the
+  // team waits for them.
+  struct Release {
+    Channel<TileOrder>& orders;
+    ~Release() { orders.close(); }
+  } release{orders};
+
+  Sender sender;
+  const std::int32_t chains = credits(rt2::effective_threads(schedule));
+  sender.send(0, kRequest, bytes_of(chains));
+  int open = chains;
+  while (open > 0) {
+    if (team.failed()) {
+      orders.close();
+      team.join();  // rethrows
+    }
+    bool busy = false;
+    while (std::optional<Finished> f = finished.try_pop()) {
+      sender.send(0, kResult, result_message(*f));
+      busy = true;
+    }
+    int found = 0;
+    MPI_Status st;
+    check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &found, &st), "MPI_Iprobe");
+    if (found) {
+      busy = true;
+      const std::vector<std::byte> bytes = receive(st);
+      if (st.MPI_TAG == kTile) {
+        orders.push(value_of<TileOrder>(bytes));
+      } else if (st.MPI_TAG == kDone) {
+        --open;
+      } else {
+        throw rt2::Error("MPI protocol: an unexpected message from rank 0 (tag " +
+                         std::to_string(st.MPI_TAG) + ")");
+      }
+    }
+    sender.reap();
+    if (!busy) finished.wait_for(kPoll);  // wakes as soon as a tile is finished
+  }
+  orders.close();
+  FrameTally tally = team.join();
+  sender.drain();
+  tally.bytes_sent = sender.bytes_sent();
+  return tally;
+}
+
+}  // namespace rt2cpr::mpi

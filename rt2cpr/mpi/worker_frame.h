@@ -1,0 +1,20 @@
+// rt2cpr/mpi/worker_frame.h — a worker's part of a frame (any rank but 0): it asks rank 0
+// for tiles (protocol.h), renders them with its render threads and sends back their means.
+#pragma once
+
+#include "rt2/film.h"
+#include "rt2/render.h"
+#include "rt2/schedule.h"
+#include "rt2cpr/mpi/frame_tally.h"
+
+namespace rt2cpr::mpi {
+
+// Renders this rank's share of the frame until rank 0 has ended each of its chains; returns
+// its tally. The main thread sends each finished tile at once (it waits on the render
+// threads' queue, kPoll at most, then polls for rank 0's answers). Throws rt2::Error for a
+// message the protocol does not allow or a failing MPI call, and rethrows a failure of its
+// render threads.
+FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
+                               const rt2::Schedule& schedule);
+
+}  // namespace rt2cpr::mpi
