@@ -1,8 +1,8 @@
 // rt2cpr_mpi under Debian's mpirun, on this machine: 1, 2 and 3 ranks give the single
 // process's image bits for any tile size, over passes and frames; only rank 0 prints; and
 // every way a job can fail (a bad command line, a missing scene, a scene one rank cannot
-// read, a rank killed mid-render) ends it with one line from rank 0, a non-zero status and
-// no output file.
+// read, a rank out of memory, a rank killed mid-render) ends it with one line from rank 0,
+// a non-zero status and no output file.
 //
 // mpirun runs as root here only with --allow-run-as-root, on 2 cores only with
 // --oversubscribe (3 ranks of 2 threads), and --bind-to none keeps it from pinning each
@@ -179,6 +179,23 @@ TEST_F(Mpi, ARankThatCannotReadTheSceneStopsTheJob) {
   expect_one_line_failure(r, 1, "rank 1 (", 2);  // the two folders
   EXPECT_NE(r.err.find("glass.toml"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
+}
+
+// Ranks 1 and 2 run out of memory as they allocate their film: their data segment is capped
+// at 200 MB (prlimit), which MPI and the scene fit in, and the film of 3000 x 3000 pixels
+// takes 324 MB. Rank 1 is named; nothing renders. (Under AddressSanitizer a capped process
+// cannot even start, its shadow memory counting as data, and a failed allocation ends it
+// instead of throwing: release builds only.)
+TEST_F(Mpi, ARankOutOfMemoryStopsTheJob) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot run under a data segment cap";
+#endif
+  const std::string args = "--width 3000 --height 3000 --depth 0 --output " + path("x.png");
+  const Outcome r = run_command(std::string(kMpirun) + " -np 1 " + RT2CPR_MPI_BIN + " " + args +
+                                " : -np 2 prlimit --data=" + std::to_string(200 << 20) + " " +
+                                RT2CPR_MPI_BIN + " " + args);
+  expect_one_line_failure(r, 1, "rank 1 (");
+  EXPECT_NE(r.err.find("out of memory"), std::string::npos) << r.err;
 }
 
 // The end of a job mpirun starts in the background: its pid and exit status.
