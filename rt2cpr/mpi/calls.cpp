@@ -23,13 +23,13 @@ void check_size(std::size_t got, std::size_t expected) {
                      std::to_string(expected) + " were expected");
 }
 
-void wait(MPI_Request& request, const Between& between) {
+void wait(MPI_Request& request, const Between& between, std::chrono::microseconds poll) {
   for (;;) {
     int done = 0;
     check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
     if (done) return;
     if (between) between();
-    std::this_thread::sleep_for(kPoll);
+    std::this_thread::sleep_for(poll);
   }
 }
 
@@ -66,7 +66,7 @@ std::string receive_text(int source, int tag, const Between& between) {
       return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     }
     if (between) between();
-    std::this_thread::sleep_for(kPoll);
+    std::this_thread::sleep_for(kPollIdle);
   }
 }
 

@@ -102,13 +102,18 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
   const std::vector<Peer> peers = allgather(me, watch);
 
   std::vector<RankStats> ranks(peers.size());
-  int all_threads = 0, chains = 0;
+  int all_threads = 0;
   for (std::size_t r = 0; r < peers.size(); ++r) {
     ranks[r] = {.rank = int(r), .host = peers[r].host, .threads = peers[r].threads};
     all_threads += peers[r].threads;
-    if (r > 0) chains += credits(peers[r].threads);
   }
-  const std::vector<rt2::Tile> tiles = leader() ? job_tiles(o, all_threads) : std::vector<rt2::Tile>{};
+  // Every rank knows the tiles (their count sets the workers' credits); rank 0 hands them out.
+  const std::vector<rt2::Tile> tiles = job_tiles(o, all_threads);
+  const auto credits_of = [&](std::size_t r) {
+    return credits(peers[r].threads, tiles.size(), all_threads);
+  };
+  int chains = 0;
+  for (std::size_t r = 1; r < peers.size(); ++r) chains += credits_of(r);
   if (leader() && !o.quiet)
     std::printf("MPI: %d processes, %d render threads in all%s; %zu tiles a frame, handed out as "
                 "they are asked for\n", session_.size(), all_threads,
@@ -126,7 +131,8 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
     const FrameTally mine =
         leader() ? render_root_frame({setup.renderer, setup.film, o.schedule, o.rank0_renders,
                                       tiles, chains, image, [&](int in, int n) { bar.update(in, n); }})
-                 : render_worker_frame(setup.renderer, setup.film, o.schedule);
+                 : render_worker_frame(setup.renderer, setup.film, o.schedule,
+                                       credits_of(std::size_t(session_.rank())));
     rt2::FrameResult frame;
     frame.ms = ms_since(start);
     const std::vector<FrameTally> all = allgather(mine, watch);

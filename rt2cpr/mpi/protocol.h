@@ -2,16 +2,18 @@
 //
 // Rank 0 hands the frame's tiles out one at a time, on demand (self-scheduling), and
 // renders tiles itself between two messages (root_frame.h). A worker (worker_frame.h)
-// opens the frame with one kRequest holding its credits c: the tiles it wants in hand.
-// Rank 0 answers each credit, and later each kResult, with one kTile (a tile to render,
-// while any is left) or kDone. So each of a worker's c chains request -> tile -> result ->
-// tile ... ends in exactly one kDone: the worker's frame is over when it has received c of
-// them, and rank 0's when every tile's pixels are in and every chain has ended. A
-// collective at each frame's end (frame_tally.h) keeps frames apart: no request of the
-// next frame reaches rank 0 before it has left this one. kError carries a worker's failure
-// as text; rank 0 prints it and aborts the job. kFailure is the agreement's (agreement.h).
+// opens the frame with one kRequest holding its credits c, the tiles it wants in hand
+// (credits() below). Rank 0 answers each credit, and later each kResult, with one kTile (a
+// tile to render, while any is left) or kDone. So each of a worker's c chains (request ->
+// tile -> result -> tile ...) ends in exactly one kDone: the worker's frame is over when it
+// has received c of them, and rank 0's when every tile's pixels are in and every chain has
+// ended. A collective at each frame's end (frame_tally.h) keeps frames apart: no request of
+// the next frame reaches rank 0 before it has left this one. kError carries a worker's
+// failure as text; rank 0 prints it and aborts the job. kFailure is the agreement's
+// (agreement.h).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -36,11 +38,17 @@ struct TileOrder {
 };
 static_assert(sizeof(TileOrder) == 20 && std::is_trivially_copyable_v<TileOrder>);
 
-// A worker keeps two tiles per render thread in hand: when a thread finishes one, the next
-// is already queued while the answer to its result travels (a round trip of up to two
-// kPoll, calls.h), and at a frame's end a worker holds at most one tile per thread that
-// another rank could have rendered sooner.
-inline int credits(int threads) { return 2 * threads; }
+// The tiles a worker of `threads` render threads holds (rendering or queued), in a frame of
+// `tiles` tiles over `all_threads` threads: enough that a thread finishing a tile finds the
+// next one queued while the answer to its result is on its way (two polls, up to 2 kPoll,
+// calls.h), but not so many that at the frame's end it holds much that another rank could
+// have rendered sooner. Per thread: the one it renders, and one to three more as a 16th of
+// its fair share of the frame allows (bands of rows, a few per thread: one more; 64-pixel
+// tiles of the hard preset, 96 per thread on 2 threads: three more).
+inline int credits(int threads, std::size_t tiles, int all_threads) {
+  const std::size_t fair = tiles / std::size_t(all_threads);
+  return threads * (1 + static_cast<int>(std::clamp<std::size_t>(fair / 16, 1, 3)));
+}
 
 // The bytes of a kResult message for `tile`: its index, then its means.
 inline std::size_t result_bytes(const rt2::Tile& tile) {

@@ -40,12 +40,14 @@ void RenderTeam::loop(const rt2::Renderer& renderer, rt2::Film& film) {
     while (!stop_ && !failed_) {
       const std::optional<TileOrder> order = next_();
       if (!order) break;
+      ++rendering_;
       const auto t0 = Clock::now();
       std::vector<float> rgb(order->tile.pixels() * 3);
       mine.nonfinite_pixels += render_whole_tile(renderer, film, order->tile, rgb.data(), mine.rays);
       mine.busy_ms += ms_since(t0);
       ++mine.tiles;
       done_(*order, std::move(rgb));
+      --rendering_;
     }
   } catch (...) {
     record_failure();

@@ -48,6 +48,8 @@ class RenderTeam {
 
   // True once a loop has failed (it and the others then take no more tiles).
   bool failed() const { return failed_; }
+  // True while a loop renders a tile (false while they all wait in `next` or have ended).
+  bool rendering() const { return rendering_ > 0; }
   // Waits for every loop to end; rethrows the first failure. Its rays, tiles, busy time
   // and non-finite pixels (the bytes and serving time are the caller's).
   FrameTally join();
@@ -58,6 +60,7 @@ class RenderTeam {
   Next next_;
   Done done_;
   std::atomic<bool> stop_ = false, failed_ = false;
+  std::atomic<int> rendering_ = 0;
   std::mutex mutex_;  // guards tally_ and failure_
   FrameTally tally_;
   std::exception_ptr failure_;

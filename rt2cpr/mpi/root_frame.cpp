@@ -67,7 +67,8 @@ FrameTally render_root_frame(const RootFrame& frame) {
     if (!found) {
       sender.reap();
       if (frame.progress) frame.progress(in, n);
-      std::this_thread::sleep_for(kPoll);
+      std::this_thread::sleep_for(open > 0 ? kPollServe
+                                  : team && team->rendering() ? kPoll : kPollIdle);
       continue;
     }
     const auto t0 = Clock::now();

@@ -27,10 +27,10 @@ struct RootFrame {
 
 // Renders the frame with every rank; returns rank 0's own tally. Its render threads (unless
 // it only serves) take tiles from the same counter the main thread hands out from, with no
-// message. The main
-// thread polls for messages, sleeping kPoll when there are none; throws rt2::Error for a
-// worker's kError (its text), a message the protocol does not allow, or a failing MPI call,
-// and rethrows a failure of its own render threads.
+// message. The main thread polls for messages (calls.h: kPollServe while a worker is in
+// the frame, else kPoll while its threads render); throws rt2::Error for a worker's kError
+// (its text), a message the protocol does not allow, or a failing MPI call, and rethrows a
+// failure of its own render threads.
 FrameTally render_root_frame(const RootFrame& frame);
 
 }  // namespace rt2cpr::mpi

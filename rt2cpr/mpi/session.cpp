@@ -31,7 +31,7 @@ Session::~Session() {
   try {
     MPI_Request request;
     check(MPI_Ibarrier(MPI_COMM_WORLD, &request), "MPI_Ibarrier");
-    wait(request);
+    wait(request, {}, kPoll);  // rank 0 may be writing a large image meanwhile
   } catch (...) {
     // MPI_Finalize below reports what is wrong with the job, if anything.
   }

@@ -29,7 +29,7 @@ std::vector<std::byte> result_message(const Finished& f) {
 }  // namespace
 
 FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
-                               const rt2::Schedule& schedule) {
+                               const rt2::Schedule& schedule, int credits) {
   Channel<TileOrder> orders;
   Channel<Finished> finished;
   RenderTeam team(renderer, film, schedule, [&] { return orders.pop(); },
@@ -44,9 +44,8 @@ FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
   } release{orders};
 
   Sender sender;
-  const std::int32_t chains = credits(rt2::effective_threads(schedule));
-  sender.send(0, kRequest, bytes_of(chains));
-  int open = chains;
+  sender.send(0, kRequest, bytes_of(std::int32_t{credits}));
+  int open = credits;
   while (open > 0) {
     if (team.failed()) {
       orders.close();
@@ -73,7 +72,7 @@ FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
       }
     }
     sender.reap();
-    if (!busy) finished.wait_for(kPoll);  // wakes as soon as a tile is finished
+    if (!busy) finished.wait_for(team.rendering() ? kPoll : kPollIdle);  // or a tile is done
   }
   orders.close();
   FrameTally tally = team.join();
