@@ -56,15 +56,16 @@ std::vector<std::byte> receive(const MPI_Status& probed) {
   return bytes;
 }
 
+std::string text_of(const std::vector<std::byte>& bytes) {
+  return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
 std::string receive_text(int source, int tag, const Between& between) {
   for (;;) {
     int found = 0;
     MPI_Status status;
     check(MPI_Iprobe(source, tag, MPI_COMM_WORLD, &found, &status), "MPI_Iprobe");
-    if (found) {
-      const std::vector<std::byte> bytes = receive(status);
-      return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    }
+    if (found) return text_of(receive(status));
     if (between) between();
     std::this_thread::sleep_for(kPollIdle);
   }

@@ -50,6 +50,9 @@ std::vector<std::byte> receive(const MPI_Status& probed);
 // Sends `text` (its bytes, no terminator) to rank `dest` with `tag` and waits until it is out.
 void send_text(int dest, int tag, const std::string& text, const Between& between = {});
 
+// A message's bytes as text.
+std::string text_of(const std::vector<std::byte>& bytes);
+
 // Waits for a message of `tag` from `source` and returns its bytes as text.
 std::string receive_text(int source, int tag, const Between& between = {});
 

@@ -28,9 +28,9 @@ struct Peer {
 // rows, threads x grain of them over all the ranks' threads (at most one per row).
 std::vector<rt2::Tile> job_tiles(const Options& o, int all_threads) {
   rt2::Schedule s = o.schedule;
-  if (s.tile == 0) {  // make_tiles cuts one thread's `grain` bands
-    s = {rt2::Backend::serial, 1, static_cast<int>(std::min<long long>(
-                                      1'000'000, static_cast<long long>(all_threads) * s.grain)), 0};
+  if (s.tile == 0) {  // as many bands as one serial thread's `grain`
+    const long long bands = static_cast<long long>(all_threads) * s.grain;
+    s = {rt2::Backend::serial, 1, static_cast<int>(std::min<long long>(bands, 1'000'000)), 0};
   }
   return rt2::make_tiles(s, o.render.width, o.render.height);
 }
@@ -40,9 +40,7 @@ void watch_for_errors() {
   int found = 0;
   MPI_Status st;
   check(MPI_Iprobe(MPI_ANY_SOURCE, kError, MPI_COMM_WORLD, &found, &st), "MPI_Iprobe");
-  if (!found) return;
-  const std::vector<std::byte> bytes = receive(st);
-  throw rt2::Error(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  if (found) throw rt2::Error(text_of(receive(st)));
 }
 
 }  // namespace

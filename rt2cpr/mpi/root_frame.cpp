@@ -2,8 +2,8 @@
 #include "rt2cpr/mpi/root_frame.h"
 
 #include <atomic>
-#include <optional>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 #include "rt2/error.h"
@@ -76,7 +76,8 @@ FrameTally render_root_frame(const RootFrame& frame) {
     switch (st.MPI_TAG) {
       case kRequest: {
         const auto wanted = value_of<std::int32_t>(bytes);
-        if (wanted < 1 || wanted > open) protocol_error(st, "a request for " + std::to_string(wanted) + " tiles");
+        if (wanted < 1 || wanted > open)
+          protocol_error(st, "a request for " + std::to_string(wanted) + " tiles");
         for (int k = 0; k < wanted; ++k) answer(st.MPI_SOURCE);
         break;
       }
@@ -94,7 +95,7 @@ FrameTally render_root_frame(const RootFrame& frame) {
         break;
       }
       case kError:
-        throw rt2::Error(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        throw rt2::Error(text_of(bytes));
       default:
         protocol_error(st, "an unexpected message");
     }
