@@ -45,9 +45,7 @@ void watch_for_errors() {
 
 }  // namespace
 
-Job::Job(int& argc, char**& argv) : session_(argc, argv) {
-  if (session_.root()) notice_.emplace();
-}
+Job::Job(int& argc, char**& argv) : session_(argc, argv), notice_(session_.root()) {}
 
 void Job::check(const Options& o) const {
   if (!o.rank0_renders && session_.size() < 2)
@@ -68,7 +66,7 @@ void Job::render_frames(const Options& o, RenderSetup& setup, Report& report, rt
   } catch (...) {
     stop(failure_message());
   }
-  if (notice_) notice_->release();
+  notice_.release();
 }
 
 int Job::fail(int status) const {

@@ -63,7 +63,7 @@ class Job {
   [[noreturn]] void stop(const std::string& failure) const;
 
   Session session_;
-  std::optional<StopNotice> notice_;  // rank 0's
+  StopNotice notice_;
 };
 
 }  // namespace rt2cpr::mpi
