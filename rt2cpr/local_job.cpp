@@ -12,7 +12,8 @@ namespace rt2cpr {
 
 void LocalJob::check(const Options& o) const {
   if (!o.rank0_renders)
-    throw rt2::Error("--rank0 serve: one process renders every tile; rt2cpr_mpi's rank 0 can serve");
+    throw rt2::Error("--rank0 serve: one process renders every tile; rt2cpr_mpi's rank 0 can "
+                     "serve");
 }
 
 void LocalJob::render_frames(const Options& o, RenderSetup& setup, Report& report,

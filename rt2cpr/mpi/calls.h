@@ -42,7 +42,8 @@ void wait(MPI_Request& request, const Between& between = {},
           std::chrono::microseconds poll = kPollIdle);
 
 // Sends `bytes` to rank `dest` with `tag` and waits until they are out.
-void send_bytes(int dest, int tag, const std::vector<std::byte>& bytes, const Between& between = {});
+void send_bytes(int dest, int tag, const std::vector<std::byte>& bytes,
+                const Between& between = {});
 
 // The message `probed` announced (MPI_Iprobe's status), received whole.
 std::vector<std::byte> receive(const MPI_Status& probed);

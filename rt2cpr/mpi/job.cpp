@@ -124,9 +124,10 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
       const rt2::LightBvh::BuildTimes t = setup.compiled.move_lights(f / 30.0, threads);
       if (leader()) report.add_light_update(t);
     }
+    const auto progress = [&](int in, int n) { bar.update(in, n); };
     const FrameTally mine =
         leader() ? render_root_frame({setup.renderer, setup.film, o.schedule, o.rank0_renders,
-                                      tiles, chains, image, [&](int in, int n) { bar.update(in, n); }})
+                                      tiles, chains, image, progress})
                  : render_worker_frame(setup.renderer, setup.film, o.schedule,
                                        credits_of(std::size_t(session_.rank())));
     rt2::FrameResult frame;

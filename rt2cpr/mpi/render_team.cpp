@@ -43,7 +43,8 @@ void RenderTeam::loop(const rt2::Renderer& renderer, rt2::Film& film) {
       ++rendering_;
       const auto t0 = Clock::now();
       std::vector<float> rgb(order->tile.pixels() * 3);
-      mine.nonfinite_pixels += render_whole_tile(renderer, film, order->tile, rgb.data(), mine.rays);
+      mine.nonfinite_pixels +=
+          render_whole_tile(renderer, film, order->tile, rgb.data(), mine.rays);
       mine.busy_ms += ms_since(t0);
       ++mine.tiles;
       done_(*order, std::move(rgb));

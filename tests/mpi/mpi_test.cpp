@@ -126,9 +126,9 @@ TEST_P(SameImage, AsOneProcessBitForBit) {
     }
   }
   const int threads = 2 * (c.ranks - !c.rank0_renders);
-  const std::uint64_t per_frame =
-      c.tile > 0 ? std::uint64_t((64 + c.tile - 1) / c.tile) * std::uint64_t((48 + c.tile - 1) / c.tile)
-                 : std::uint64_t(std::min(48, threads * 4));  // threads x grain 4 bands
+  const auto across = [&](int pixels) { return std::uint64_t((pixels + c.tile - 1) / c.tile); };
+  const std::uint64_t per_frame = c.tile > 0 ? across(64) * across(48)
+                                             : std::uint64_t(std::min(48, threads * 4));  // x grain
   EXPECT_EQ(tiles, per_frame * std::uint64_t(c.frames));
 }
 
