@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 #include "rt2/error.h"
@@ -11,6 +12,7 @@
 #include "rt2cpr/clock.h"
 #include "rt2cpr/mpi/calls.h"
 #include "rt2cpr/mpi/protocol.h"
+#include "rt2cpr/mpi/render_team.h"
 #include "rt2cpr/mpi/root_frame.h"
 #include "rt2cpr/mpi/worker_frame.h"
 #include "rt2cpr/progress.h"
@@ -115,6 +117,8 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
                 "they are asked for\n", session_.size(), all_threads,
                 o.rank0_renders ? "" : " (rank 0 serves only)", tiles.size());
 
+  std::optional<RenderTeam> team;
+  if (!leader() || o.rank0_renders) team.emplace(setup.renderer, setup.film, o.schedule);
   ProgressBar bar(leader() && !o.quiet);
   for (int f = 0; f < o.frames; ++f) {
     bar.start_frame(f, o.frames);
@@ -126,10 +130,8 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
     }
     const auto progress = [&](int in, int n) { bar.update(in, n); };
     const FrameTally mine =
-        leader() ? render_root_frame({setup.renderer, setup.film, o.schedule, o.rank0_renders,
-                                      tiles, chains, image, progress})
-                 : render_worker_frame(setup.renderer, setup.film, o.schedule,
-                                       credits_of(std::size_t(session_.rank())));
+        leader() ? render_root_frame({team ? &*team : nullptr, tiles, chains, image, progress})
+                 : render_worker_frame(*team, credits_of(std::size_t(session_.rank())));
     rt2::FrameResult frame;
     frame.ms = ms_since(start);
     const std::vector<FrameTally> all = allgather(mine, watch);

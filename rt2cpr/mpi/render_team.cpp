@@ -14,24 +14,74 @@ std::uint64_t render_whole_tile(const rt2::Renderer& renderer, rt2::Film& film,
 }
 
 RenderTeam::RenderTeam(const rt2::Renderer& renderer, rt2::Film& film,
-                       const rt2::Schedule& schedule, Next next, Done done)
-    : next_(std::move(next)), done_(std::move(done)), thread_([this, &renderer, &film, schedule] {
-        const auto work = [&](int) { loop(renderer, film); };
-        const int threads = rt2::effective_threads(schedule);
-        try {
-          switch (schedule.backend) {
-            case rt2::Backend::serial: rt2::detail::run_serial(1, work); break;
-            case rt2::Backend::omp: rt2::detail::run_omp(threads, threads, work); break;
-            case rt2::Backend::tbb: rt2::detail::run_tbb(threads, threads, work); break;
-          }
-        } catch (...) {  // the backend itself (a loop catches its own)
-          record_failure();
-        }
-      }) {}
+                       const rt2::Schedule& schedule)
+    : thread_([this, &renderer, &film, schedule] { run_frames(renderer, film, schedule); }) {}
 
 RenderTeam::~RenderTeam() {
+  stop();
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void RenderTeam::start(Next next, Done done) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    next_ = std::move(next);
+    done_ = std::move(done);
+    tally_ = {};
+    failure_ = nullptr;
+    stop_ = failed_ = false;
+    rendering_ = 0;
+    running_ = true;
+  }
+  changed_.notify_all();
+}
+
+FrameTally RenderTeam::finish() {
+  wait_for_end();
+  if (failure_) std::rethrow_exception(failure_);
+  return tally_;
+}
+
+void RenderTeam::stop() {
   stop_ = true;
-  if (thread_.joinable()) thread_.join();
+  wait_for_end();
+}
+
+void RenderTeam::wait_for_end() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [&] { return !running_; });
+}
+
+void RenderTeam::run_frames(const rt2::Renderer& renderer, rt2::Film& film,
+                            const rt2::Schedule& schedule) {
+  const auto work = [&](int) { loop(renderer, film); };
+  const int threads = rt2::effective_threads(schedule);
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait(lock, [&] { return running_ || quit_; });
+      if (quit_) return;
+    }
+    try {
+      switch (schedule.backend) {
+        case rt2::Backend::serial: rt2::detail::run_serial(1, work); break;
+        case rt2::Backend::omp: rt2::detail::run_omp(threads, threads, work); break;
+        case rt2::Backend::tbb: rt2::detail::run_tbb(threads, threads, work); break;
+      }
+    } catch (...) {  // the backend itself (a loop catches its own)
+      record_failure();
+    }
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      running_ = false;
+    }
+    changed_.notify_all();
+  }
 }
 
 void RenderTeam::loop(const rt2::Renderer& renderer, rt2::Film& film) {
@@ -64,12 +114,6 @@ void RenderTeam::record_failure() {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (!failure_) failure_ = std::current_exception();
   failed_ = true;
-}
-
-FrameTally RenderTeam::join() {
-  if (thread_.joinable()) thread_.join();
-  if (failure_) std::rethrow_exception(failure_);
-  return tally_;
 }
 
 }  // namespace rt2cpr::mpi

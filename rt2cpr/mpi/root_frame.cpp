@@ -9,7 +9,6 @@
 #include "rt2/error.h"
 #include "rt2cpr/clock.h"
 #include "rt2cpr/mpi/protocol.h"
-#include "rt2cpr/mpi/render_team.h"
 #include "rt2cpr/mpi/sender.h"
 
 namespace rt2cpr::mpi {
@@ -37,13 +36,19 @@ FrameTally render_root_frame(const RootFrame& frame) {
     if (i >= n) return std::nullopt;
     return TileOrder{i, frame.tiles[std::size_t(i)]};
   };
-  std::optional<RenderTeam> team;
-  if (frame.renders)
-    team.emplace(frame.renderer, frame.film, frame.schedule, take,
-                 [&](const TileOrder& order, std::vector<float>&& rgb) {
-                   paste(frame.image, order.tile, rgb.data());
-                   ++in;
-                 });
+  RenderTeam* const team = frame.team;
+  if (team)
+    team->start(take, [&](const TileOrder& order, std::vector<float>&& rgb) {
+      paste(frame.image, order.tile, rgb.data());
+      ++in;
+    });
+  // However this function ends, the loops are done with its counters before they go.
+  struct Stop {
+    RenderTeam* team;
+    ~Stop() {
+      if (team) team->stop();
+    }
+  } stop{team};
 
   Sender sender;
   std::vector<int> holder(std::size_t(n), -1);  // the worker a tile is out with
@@ -60,7 +65,7 @@ FrameTally render_root_frame(const RootFrame& frame) {
   };
   double serve_ms = 0.0;
   while (in < n || open > 0) {
-    if (team && team->failed()) team->join();  // rethrows
+    if (team && team->failed()) team->finish();  // rethrows
     int found = 0;
     MPI_Status st;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &found, &st), "MPI_Iprobe");
@@ -102,7 +107,7 @@ FrameTally render_root_frame(const RootFrame& frame) {
     serve_ms += ms_since(t0);
   }
   if (frame.progress) frame.progress(n, n);
-  FrameTally tally = team ? team->join() : FrameTally{};
+  FrameTally tally = team ? team->finish() : FrameTally{};
   sender.drain();
   tally.bytes_sent = sender.bytes_sent();
   tally.serve_ms = serve_ms;

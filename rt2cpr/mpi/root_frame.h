@@ -7,18 +7,14 @@
 #include <vector>
 
 #include "rt2/image.h"
-#include "rt2/render.h"
-#include "rt2/schedule.h"
 #include "rt2cpr/mpi/calls.h"
 #include "rt2cpr/mpi/frame_tally.h"
+#include "rt2cpr/mpi/render_team.h"
 
 namespace rt2cpr::mpi {
 
 struct RootFrame {
-  const rt2::Renderer& renderer;
-  rt2::Film& film;
-  const rt2::Schedule& schedule;      // rank 0's own threads
-  bool renders = true;                // false: rank 0 only hands tiles out (--rank0 serve)
+  RenderTeam* team;                   // rank 0's threads; none: it only hands tiles out
   const std::vector<rt2::Tile>& tiles;
   int chains = 0;                     // the workers' credits, summed (protocol.h)
   rt2::Image& image;                  // the frame's size; every pixel is written

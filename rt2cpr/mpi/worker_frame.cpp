@@ -7,7 +7,6 @@
 #include "rt2/error.h"
 #include "rt2cpr/mpi/channel.h"
 #include "rt2cpr/mpi/protocol.h"
-#include "rt2cpr/mpi/render_team.h"
 #include "rt2cpr/mpi/sender.h"
 
 namespace rt2cpr::mpi {
@@ -28,20 +27,23 @@ std::vector<std::byte> result_message(const Finished& f) {
 
 }  // namespace
 
-FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
-                               const rt2::Schedule& schedule, int credits) {
+FrameTally render_worker_frame(RenderTeam& team, int credits) {
   Channel<TileOrder> orders;
   Channel<Finished> finished;
-  RenderTeam team(renderer, film, schedule, [&] { return orders.pop(); },
-                  [&](const TileOrder& order, std::vector<float>&& rgb) {
-                    finished.push({order.index, std::move(rgb)});
-                  });
-  // However this function ends, the loops waiting for an order are released before the
-  // team waits for them.
+  team.start([&] { return orders.pop(); },
+             [&](const TileOrder& order, std::vector<float>&& rgb) {
+               finished.push({order.index, std::move(rgb)});
+             });
+  // However this function ends, the loops waiting for an order are released, and done
+  // with the channels before they go.
   struct Release {
     Channel<TileOrder>& orders;
-    ~Release() { orders.close(); }
-  } release{orders};
+    RenderTeam& team;
+    ~Release() {
+      orders.close();
+      team.stop();
+    }
+  } release{orders, team};
 
   Sender sender;
   sender.send(0, kRequest, bytes_of(std::int32_t{credits}));
@@ -49,7 +51,7 @@ FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
   while (open > 0) {
     if (team.failed()) {
       orders.close();
-      team.join();  // rethrows
+      team.finish();  // rethrows
     }
     bool busy = false;
     while (std::optional<Finished> f = finished.try_pop()) {
@@ -75,7 +77,7 @@ FrameTally render_worker_frame(const rt2::Renderer& renderer, rt2::Film& film,
     if (!busy) finished.wait_for(team.rendering() ? kPoll : kPollIdle);  // or a tile is done
   }
   orders.close();
-  FrameTally tally = team.join();
+  FrameTally tally = team.finish();
   sender.drain();
   tally.bytes_sent = sender.bytes_sent();
   return tally;
