@@ -9,15 +9,16 @@
 // render threads are busy, kPollIdle while they wait for work (their cores are idle then,
 // and the message waited for is what they need); rank 0, whose answers every worker waits
 // for, kPollServe while any worker is in the frame. A wake-up costs ~26 us of CPU on the
-// 2-core VM this was measured on (the sleep alone): 2.5 % of a core at kPoll, 10 % at
-// kPollServe, half at kPollIdle.
+// 2-core VM this was measured on (the sleep alone): 2.5 % of a core at kPoll, 5 % at
+// kPollServe, 13 % at kPollIdle. Shorter intervals (200 us serving, 50 us idle) made 2 and
+// 4 ranks sharing its 2 cores 5-15 % slower (scripts/bench-mpi's layouts, 3 rounds).
 #pragma once
 
 #include <mpi.h>
 
 #include <chrono>
-#include <cstring>
 #include <cstddef>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <type_traits>
@@ -25,7 +26,7 @@
 
 namespace rt2cpr::mpi {
 
-inline constexpr std::chrono::microseconds kPoll{1000}, kPollServe{200}, kPollIdle{50};
+inline constexpr std::chrono::microseconds kPoll{1000}, kPollServe{500}, kPollIdle{200};
 
 // Called while a wait finds its request pending (before each sleep); may throw to give up.
 using Between = std::function<void()>;

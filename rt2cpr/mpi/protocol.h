@@ -40,11 +40,12 @@ static_assert(sizeof(TileOrder) == 20 && std::is_trivially_copyable_v<TileOrder>
 
 // The tiles a worker of `threads` render threads holds (rendering or queued), in a frame of
 // `tiles` tiles over `all_threads` threads: enough that a thread finishing a tile finds the
-// next one queued while the answer to its result is on its way (two polls, up to 2 kPoll,
-// calls.h), but not so many that at the frame's end it holds much that another rank could
-// have rendered sooner. Per thread: the one it renders, and one to three more as a 16th of
-// its fair share of the frame allows (bands of rows, a few per thread: one more; 64-pixel
-// tiles of the hard preset, 96 per thread on 2 threads: three more).
+// next one queued while the answer to its result is on its way (rank 0 notices the result
+// within kPollServe, the worker the answer within kPoll: calls.h), but not so many that at
+// the frame's end it holds much that another rank could have rendered sooner. Per thread:
+// the one it renders, and one to three more as a 16th of its fair share of the frame
+// allows (bands of rows, a few per thread: one more; 64-pixel tiles of the hard preset, 96
+// per thread on 2 threads: three more). So a tile should take a few milliseconds or more.
 inline int credits(int threads, std::size_t tiles, int all_threads) {
   const std::size_t fair = tiles / std::size_t(all_threads);
   return threads * (1 + static_cast<int>(std::clamp<std::size_t>(fair / 16, 1, 3)));
