@@ -18,10 +18,10 @@ void Film::clear() {
 
 void Film::clear(const Tile& tile) {
   for (int y = tile.y0; y < tile.y1; ++y) {
-    const std::size_t row = index(tile.x0, y), end = row + std::size_t(tile.width());
-    std::fill(sum_.begin() + std::ptrdiff_t(row), sum_.begin() + std::ptrdiff_t(end), vec4());
-    std::fill(carry_.begin() + std::ptrdiff_t(row), carry_.begin() + std::ptrdiff_t(end), vec4());
-    std::fill(samples_.begin() + std::ptrdiff_t(row), samples_.begin() + std::ptrdiff_t(end), 0u);
+    const auto row = std::ptrdiff_t(index(tile.x0, y)), end = row + tile.width();
+    std::fill(sum_.begin() + row, sum_.begin() + end, vec4());
+    std::fill(carry_.begin() + row, carry_.begin() + end, vec4());
+    std::fill(samples_.begin() + row, samples_.begin() + end, 0u);
   }
 }
 

@@ -46,7 +46,8 @@ class Job {
     }
     agree(session_, failure);
   }
-  // Throws rt2::Error for what an MPI job does not do: --interactive, --time-budget.
+  // Throws rt2::Error for what an MPI job does not do: --interactive, --time-budget, and
+  // --rank0 serve with one process.
   void check(const Options& o) const;
 
   // Renders the frames of `o` with every rank, each frame's tiles handed out by rank 0

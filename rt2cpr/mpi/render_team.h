@@ -1,4 +1,4 @@
-// rt2cpr/mpi/render_team.h — one rank's render threads for one frame.
+// rt2cpr/mpi/render_team.h — one rank's render threads, rendering whole tiles.
 //
 // The unit of work of an MPI job is a whole tile: every pass of it rendered into the rank's
 // film, in pass order, then its pixels' means taken out (Film::resolve of the tile) and
@@ -62,7 +62,8 @@ class RenderTeam {
   void stop();
 
  private:
-  void run_frames(const rt2::Renderer& renderer, rt2::Film& film, const rt2::Schedule& schedule);
+  void run_frames(const rt2::Renderer& renderer, rt2::Film& film,
+                  const rt2::Schedule& schedule);
   void loop(const rt2::Renderer& renderer, rt2::Film& film);
   void record_failure();  // inside a catch block: the first failure is kept
   void wait_for_end();
