@@ -13,6 +13,7 @@
 
 #include "rt2/image.h"
 #include "rt2/ray.h"
+#include "rt2/tile.h"
 
 namespace rt2 {
 
@@ -24,6 +25,8 @@ class Film {
 
   // Drops every sample (keeps the memory, for the next frame).
   void clear();
+  // Drops the samples of the pixels of `tile` only.
+  void clear(const Tile& tile);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -57,8 +60,13 @@ class Film {
   // black. A mean that is NaN or infinite (never expected) is written as black and counted
   // in the return value.
   std::uint64_t resolve(Image& image) const;
+  // The same means for the pixels of `tile` alone, into `rgb`: 3 floats per pixel, row by
+  // row (tile.pixels() x 3 floats); the same bits as resolve(Image&) gives them.
+  std::uint64_t resolve(const Tile& tile, float* rgb) const;
 
  private:
+  // Pixel i's mean into rgb[0..2]; false (and black) when it is NaN or infinite.
+  bool mean(std::size_t i, float* rgb) const;
   std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
   int width_ = 0, height_ = 0;
   std::vector<vec4> sum_, carry_;

@@ -22,6 +22,7 @@
 #include "rt2/compiled_scene.h"
 #include "rt2/film.h"
 #include "rt2/supersampling.h"
+#include "rt2/tile.h"
 
 namespace rt2 {
 
@@ -84,11 +85,6 @@ struct RenderSettings {
 struct View {
   Camera camera;
   RenderSettings settings;
-};
-
-// A rectangle of pixels: columns [x0, x1), rows [y0, y1).
-struct Tile {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
 // Rays traced, by kind (primary rays are one per sample), with what the walks of the BVH

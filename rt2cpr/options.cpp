@@ -244,6 +244,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--frame-log", o.interactive.frame_log,
                  "--interactive: write one CSV line per frame shown to FILE.csv")
       ->default_str("none");
+  std::string rank0 = "render";
+  app.add_option("--rank0", rank0, "rt2cpr_mpi: rank 0 renders tiles as well as handing them "
+                                   "out (render) or only hands them out (serve)");
   app.add_flag("--quiet", o.quiet, "print only errors");
   app.add_flag("--version", version, "print the version, commit, compiler and ISA, and exit");
 
@@ -309,6 +312,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
     throw rt2::Error("unknown --shadows '" + shadows + "' (expected on or off)");
   o.render.shadows = shadows == "on";
   if (given("--light-range")) o.light_range = parse_range_interval(light_range);
+  if (rank0 != "render" && rank0 != "serve")
+    throw rt2::Error("unknown --rank0 '" + rank0 + "' (expected render or serve)");
+  o.rank0_renders = rank0 == "render";
   if (!rt2::parse_tone_curve(tone_curve, o.display.curve))
     throw rt2::Error("unknown --tonemap '" + tone_curve + "' (expected none, reinhard or aces)");
   if (!(o.display.exposure >= -64.0f && o.display.exposure <= 64.0f))

@@ -44,6 +44,9 @@ struct Options {
   std::string stats;   // JSON file; empty: not written
   std::string reference;  // reference image to compare against; empty: none
   bool quiet = false;
+  // --rank0 (rt2cpr_mpi): rank 0 renders tiles as well as handing them out (true), or only
+  // hands them out (false: when serving many ranks is a full-time job).
+  bool rank0_renders = true;
   Interactive interactive;  // --interactive and its options
 };
 

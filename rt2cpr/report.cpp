@@ -66,6 +66,13 @@ double median_of(const std::vector<T>& frames, F field) {
   return median(v);
 }
 
+// The share of its render threads' frame time a rank spent rendering tiles.
+double busy_share(const RankStats& r, const std::vector<double>& frame_ms) {
+  double frames = 0.0;
+  for (double ms : frame_ms) frames += ms;
+  return r.threads > 0 && frames > 0.0 ? r.busy_ms / (r.threads * frames) : 0.0;
+}
+
 std::string host_name() {
   char buf[256] = {};
   if (::gethostname(buf, sizeof buf - 1) != 0) return "unknown";
@@ -259,6 +266,7 @@ void Report::print_summary() const {
   if (nonfinite_ > 0)
     std::printf("warning: %llu pixels came out NaN or infinite and were written as black\n",
                 static_cast<unsigned long long>(nonfinite_));
+  print_ranks();
   if (j.contains("reference")) {
     const auto& r = j["reference"];
     std::printf("against reference: RMSE %.6f, PSNR %s dB, SSIM %.5f, edge RMSE %.6f over %zu "
@@ -267,6 +275,19 @@ void Report::print_summary() const {
                 r["psnr"].is_null() ? "inf" : std::to_string(r["psnr"].get<double>()).c_str(),
                 r["ssim"].get<double>(), r["edge_rmse"].get<double>(),
                 r["edge_pixels"].get<std::size_t>());
+  }
+}
+
+void Report::print_ranks() const {
+  if (ranks_.empty()) return;
+  std::printf("MPI: %zu processes; each one's tiles, render threads' busy time (share of their "
+              "frame time) and bytes sent over %zu frames:\n", ranks_.size(), frame_ms_.size());
+  for (const RankStats& r : ranks_) {
+    std::printf("  rank %d (%s, %d threads): %llu tiles, %.1f thread-ms (%.0f %%), %.3f MB sent",
+                r.rank, r.host.c_str(), r.threads, static_cast<unsigned long long>(r.tiles),
+                r.busy_ms, 100.0 * busy_share(r, frame_ms_), double(r.bytes_sent) / 1e6);
+    if (r.rank == 0) std::printf("; serving messages %.2f ms", r.serve_ms);
+    std::printf("\n");
   }
 }
 
@@ -312,6 +333,19 @@ nlohmann::json Report::json() const {
                      {"lights", stage(&rt2::StageTimes::lights)},
                      {"shade", stage(&rt2::StageTimes::shade)},
                      {"shadow", stage(&rt2::StageTimes::shadow)}};
+  if (!ranks_.empty()) {
+    j["mpi_processes"] = ranks_.size();
+    j["mpi_ranks"] = nlohmann::json::array();
+    for (const RankStats& r : ranks_)
+      j["mpi_ranks"].push_back({{"rank", r.rank},
+                                {"host", r.host},
+                                {"threads", r.threads},
+                                {"tiles", r.tiles},
+                                {"busy_ms", r.busy_ms},
+                                {"busy_share", busy_share(r, frame_ms_)},
+                                {"bytes_sent", r.bytes_sent},
+                                {"serve_ms", r.serve_ms}});
+  }
   if (!light_updates_.empty()) {
     using B = rt2::LightBvh::BuildTimes;
     const auto step = [&](double B::*field) {

@@ -1,6 +1,6 @@
 // rt2cpr/report.h — what rt2cpr tells its user: the set-up, per-frame timing with median,
-// min and max, ray counts by kind, Mrays/s, image error against a reference, and all of
-// it as JSON for --stats (keys in snake_case).
+// min and max, ray counts by kind, Mrays/s, image error against a reference, what each
+// process of an MPI job did, and all of it as JSON for --stats (keys in snake_case).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -12,6 +12,7 @@
 #include "rt2/render.h"
 #include "rt2/schedule.h"
 #include "rt2cpr/options.h"
+#include "rt2cpr/rank_stats.h"
 
 namespace rt2cpr {
 
@@ -23,6 +24,8 @@ class Report {
   void add_frame(const rt2::FrameResult& r, int passes);
   // A frame's light update (--animate-lights): moving the lights and rebuilding their tree.
   void add_light_update(const rt2::LightBvh::BuildTimes& t) { light_updates_.push_back(t); }
+  // The processes of an MPI job, rank by rank (rt2cpr_mpi; none for rt2cpr).
+  void set_ranks(std::vector<RankStats> ranks) { ranks_ = std::move(ranks); }
   // Image error of the last frame against a reference of the same size (RMSE, PSNR, SSIM).
   void compare(const rt2::Image& image, const rt2::Image& reference);
   void print_setup() const;
@@ -31,11 +34,13 @@ class Report {
 
  private:
   double median_ms() const;
+  void print_ranks() const;
   nlohmann::json j_;
   std::vector<double> frame_ms_;
   rt2::RayCounts rays_;                        // the last frame's
   std::vector<rt2::StageTimes> stages_;         // per frame
   std::vector<rt2::LightBvh::BuildTimes> light_updates_;  // per frame, --animate-lights
+  std::vector<RankStats> ranks_;
   int passes_ = 0;
   std::uint64_t nonfinite_ = 0;
 };

@@ -4,6 +4,7 @@
 #include "rt2/builtin_scene.h"
 #include "rt2/error.h"
 #include "rt2/scene_io.h"
+#include "rt2cpr/clock.h"
 
 namespace rt2cpr {
 
@@ -32,5 +33,30 @@ rt2::CompiledScene compile_at_camera(rt2::Scene& scene, const Options& o) {
   rt2::recenter_on_camera(scene);
   return rt2::CompiledScene::compile(scene, o.bvh, o.isa);
 }
+
+namespace {
+
+rt2::Scene load_with_lights(const Options& o, double& ms) {
+  const auto t0 = Clock::now();
+  rt2::Scene scene = load_scene(o);
+  set_lights(scene, o.lights, o.light_range);
+  ms = ms_since(t0);
+  return scene;
+}
+
+rt2::CompiledScene compile_timed(rt2::Scene& scene, const Options& o, double& ms) {
+  const auto t0 = Clock::now();
+  rt2::CompiledScene compiled = compile_at_camera(scene, o);
+  ms = ms_since(t0);
+  return compiled;
+}
+
+}  // namespace
+
+RenderSetup::RenderSetup(const Options& o)
+    : scene(load_with_lights(o, load_ms)),
+      compiled(compile_timed(scene, o, build_ms)),
+      renderer(compiled, rt2::View{scene.camera, o.render}),
+      film(o.render.width, o.render.height) {}
 
 }  // namespace rt2cpr

@@ -4,6 +4,8 @@
 #pragma once
 
 #include "rt2/compiled_scene.h"
+#include "rt2/film.h"
+#include "rt2/render.h"
 #include "rt2/scene.h"
 #include "rt2cpr/options.h"
 
@@ -21,5 +23,22 @@ void set_lights(rt2::Scene& scene, int lights, const std::optional<rt2::RangeInt
 // `scene` validated, moved so that its camera is at the origin (full float precision where
 // the pixels come from: Scene::origin keeps where the world's origin went) and compiled.
 rt2::CompiledScene compile_at_camera(rt2::Scene& scene, const Options& o);
+
+// What a file render has before its first frame: the scene loaded with its lights and
+// compiled (with how long each step took), the renderer of its view and an empty film.
+// Not movable: the renderer refers to the compiled scene.
+struct RenderSetup {
+  // Throws rt2::Error (or std::bad_alloc); call rt2::check_image_fits first.
+  explicit RenderSetup(const Options& o);
+  RenderSetup(const RenderSetup&) = delete;
+  RenderSetup& operator=(const RenderSetup&) = delete;
+
+  double load_ms = 0.0;   // load_scene and set_lights
+  double build_ms = 0.0;  // compile_at_camera
+  rt2::Scene scene;
+  rt2::CompiledScene compiled;
+  rt2::Renderer renderer;
+  rt2::Film film;
+};
 
 }  // namespace rt2cpr

@@ -46,8 +46,12 @@ class Cli : public ::testing::Test {
     return ss.str();
   }
   Outcome run(const std::string& args) const {
-    const std::string cmd = std::string(kChildEnv) + RT2CPR_BIN + " " + args + " >" +
-                            path("stdout") + " 2>" + path("stderr");
+    return run_command(std::string(RT2CPR_BIN) + " " + args);
+  }
+  // A shell command (a program and its arguments) run in the same environment.
+  Outcome run_command(const std::string& command) const {
+    const std::string cmd = std::string(kChildEnv) + command + " >" + path("stdout") + " 2>" +
+                            path("stderr");
     const int raw = std::system(cmd.c_str());
     return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(path("stdout")), slurp(path("stderr"))};
   }

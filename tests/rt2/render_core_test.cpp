@@ -157,6 +157,31 @@ TEST(RenderCore, AStopMidPassLeavesWholeTilesOnly) {
   EXPECT_EQ(filled, 1);
 }
 
+// An MPI job resolves each tile where it was rendered (rt2cpr/mpi/): a tile's means are the
+// whole film's bits for those pixels, and clearing it empties those pixels alone.
+TEST(RenderCore, ATileResolvesToTheWholeFilmsBitsAndClearsAlone) {
+  const Scene s = test::glass_scene();
+  const CompiledScene c = CompiledScene::compile(s, BvhConfig{});
+  const Renderer r(c, View{s.camera, settings(3, 1)});
+  Film film(48, 36);
+  render_pass(r, Schedule{Backend::serial, 1, 1}, film, 0);
+  Image whole;
+  film.resolve(whole);
+  const Tile tile{5, 7, 30, 19};
+  std::vector<float> rgb(tile.pixels() * 3);
+  EXPECT_EQ(film.resolve(tile, rgb.data()), 0u);
+  for (int y = tile.y0; y < tile.y1; ++y)
+    ASSERT_EQ(std::memcmp(&rgb[3 * std::size_t((y - tile.y0) * tile.width())],
+                          whole.pixel(tile.x0, y), std::size_t(tile.width()) * 3 * sizeof(float)),
+              0) << "row " << y;
+  film.clear(tile);
+  EXPECT_EQ(film.samples(tile.x0, tile.y0), 0u);
+  EXPECT_EQ(film.samples(tile.x1 - 1, tile.y1 - 1), 0u);
+  EXPECT_EQ(film.samples(tile.x0 - 1, tile.y0), 3u);
+  EXPECT_EQ(film.samples(tile.x1, tile.y1 - 1), 3u);
+  EXPECT_EQ(film.samples(tile.x0, tile.y1), 3u);
+}
+
 // ---- a depth-first Whitted tracer over the public queries: the oracle --------------------
 
 // Transparency of everything on the segment (0, t_max), each surface crossing counted, by
