@@ -44,6 +44,7 @@ using Clock = std::chrono::steady_clock;
 
 // The camera counts as moving until this long after its last change.
 constexpr double kSettleSeconds = 0.12;
+
 // The next free rt2cpr-N.png in the current folder.
 std::string next_screenshot_name() {
   for (int n = 1;; ++n) {
