@@ -7,6 +7,7 @@
 #include <climits>
 #include <filesystem>
 #include <cmath>
+#include <initializer_list>
 #include <iostream>
 #include <map>
 
@@ -46,6 +47,17 @@ Presets (explicit options override them):
 Without a preset: 800x600, subpixels 1, depth 4, the scene's own lights.
 Extra lights (--lights beyond the scene's own) are white, on a ring above the scene.)";
 
+using Named = std::pair<const char*, const std::string*>;  // an option and its file
+
+// An output file (`flag` `path`) that names one of `others` is refused: writing it would
+// overwrite an input or another output.
+void refuse_same_file(const char* flag, const std::string& path, std::initializer_list<Named> others) {
+  for (const auto& [other_flag, other] : others)
+    if (!other->empty() && rt2::io::same_file(path, *other))
+      throw rt2::Error(std::string(flag) + " " + path + " is the same file as " + other_flag + " " +
+                       *other);
+}
+
 // The files named on the command line: none empty, and the statistics and the image never
 // overwrite an input or each other.
 template <class Given>
@@ -54,21 +66,17 @@ void check_paths(const Options& o, Given&& given) {
                                     {"--stats", &o.stats}, {"--reference", &o.reference},
                                     {"--camera", &o.camera}})
     if (given(flag) && value->empty()) throw rt2::Error(std::string(flag) + ": empty file name");
-  using rt2::io::same_file;
   if (!o.stats.empty()) {
     if (std::filesystem::path(o.stats).extension() != ".json")
       throw rt2::Error("--stats " + o.stats + ": the statistics file must end in .json");
-    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
-                                      {"--reference", &o.reference}, {"--camera", &o.camera},
-                                      {"--environment", &o.environment}})
-      if (!other->empty() && same_file(o.stats, *other))
-        throw rt2::Error("--stats " + o.stats + " is the same file as " + flag + " " + *other);
+    refuse_same_file("--stats", o.stats,
+                     {{"--scene", &o.scene}, {"--output", &o.output}, {"--reference", &o.reference},
+                      {"--camera", &o.camera}, {"--environment", &o.environment}});
   }
   if (!o.output.empty())
-    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--reference", &o.reference},
-                                      {"--camera", &o.camera}, {"--environment", &o.environment}})
-      if (!other->empty() && same_file(o.output, *other))
-        throw rt2::Error("--output " + o.output + " is the same file as " + flag + " " + *other);
+    refuse_same_file("--output", o.output,
+                     {{"--scene", &o.scene}, {"--reference", &o.reference}, {"--camera", &o.camera},
+                      {"--environment", &o.environment}});
 }
 
 // The viewer's options only with --interactive, and the file render's only without.
@@ -92,11 +100,9 @@ void check_interactive(const Options& o, Given&& given) {
   if (!v.frame_log.empty()) {
     if (std::filesystem::path(v.frame_log).extension() != ".csv")
       throw rt2::Error("--frame-log " + v.frame_log + ": the frame log must end in .csv");
-    for (const auto& [flag, other] : {std::pair{"--scene", &o.scene}, {"--output", &o.output},
-                                      {"--script", &v.script}, {"--camera", &o.camera},
-                                      {"--environment", &o.environment}})
-      if (!other->empty() && rt2::io::same_file(v.frame_log, *other))
-        throw rt2::Error("--frame-log " + v.frame_log + " is the same file as " + flag + " " + *other);
+    refuse_same_file("--frame-log", v.frame_log,
+                     {{"--scene", &o.scene}, {"--output", &o.output}, {"--script", &v.script},
+                      {"--camera", &o.camera}, {"--environment", &o.environment}});
   }
 }
 
