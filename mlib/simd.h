@@ -141,6 +141,14 @@ MLIB_INLINE std::uint32_t pack_rgb8(f4 a) {
   return (r << 16) | (g << 8) | b;
 }
 
+// Truncate toward zero (NaN and values outside int32 give INT32_MIN), clamp to [lo, hi]
+// and store the four lanes.
+MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int32_t* out) {
+  const __m128i i = _mm_cvttps_epi32(a);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                   _mm_min_epi32(_mm_max_epi32(i, _mm_set1_epi32(lo)), _mm_set1_epi32(hi)));
+}
+
 }  // namespace mlib::simd
 
 #endif  // MLIB_SCALAR

@@ -259,4 +259,15 @@ MLIB_INLINE std::uint32_t pack_rgb8(f4 a) {
   return (r << 16) | (g << 8) | b;
 }
 
+// Truncate toward zero (NaN and values outside int32 give INT32_MIN, as cvttps2dq), clamp
+// to [lo, hi] and store the four lanes.
+MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int32_t* out) {
+  for (int k = 0; k < 4; ++k) {
+    const float f = a.v[k];
+    const std::int32_t i =
+        f >= -2147483648.0f && f < 2147483648.0f ? static_cast<std::int32_t>(f) : INT32_MIN;
+    out[k] = i < lo ? lo : (i > hi ? hi : i);
+  }
+}
+
 }  // namespace mlib::simd

@@ -75,6 +75,13 @@ MLIB_INLINE std::uint32_t to_color(const A& a) {
   return simd::pack_rgb8(simd::mul(c, simd::set1(255.0f)));
 }
 
+// Each lane truncated toward zero and clamped to [lo, hi], into out[0..3] (NaN, and values
+// beyond int32, give lo).
+template <Expr A>
+MLIB_INLINE void truncate_clamp(const A& a, std::int32_t lo, std::int32_t hi, std::int32_t* out) {
+  simd::truncate_clamp(a.eval(), lo, hi, out);
+}
+
 // Four dot products in one go: (a0·b0, a1·b1, a2·b2, a3·b3), each over all four lanes.
 // Cheaper than four dpps where dpps is slow; the rounding may differ from dot() in the
 // last bit (different summation order).

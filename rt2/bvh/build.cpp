@@ -39,7 +39,7 @@ struct Bin {
 class Builder {
  public:
   Builder(const std::vector<Aabb>& boxes, const BvhConfig& config, Bvh& out)
-      : config_(config), out_(out), bins_(3 * std::size_t(config.sah_bins)),
+      : config_(config), out_(out), bins_(2 * 3 * std::size_t(config.sah_bins)),
         right_(std::size_t(config.sah_bins)) {
     prims_.resize(boxes.size());
     for (std::uint32_t i = 0; i < boxes.size(); ++i) {
@@ -138,11 +138,7 @@ class Builder {
   // The thesis: cut the box in the middle of its longest axis.
   std::uint32_t midpoint(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds, int axis) {
     const float cut = cbounds.center()[axis];
-    PrimBox* p = prims_.data();
-    PrimBox* m = std::partition(p + begin, p + end, [&](const PrimBox& b) {
-      return b.lo[axis] + b.hi[axis] < cut;
-    });
-    return static_cast<std::uint32_t>(m - p);
+    return partition(begin, end, [&](const PrimBox& b) { return b.lo[axis] + b.hi[axis] < cut; });
   }
 
   // Binned SAH (Wald 2007): centroids go into bins along each axis (all three in one pass);
@@ -160,18 +156,35 @@ class Builder {
     const vec4 lo = cbounds.lo, extent = cbounds.extent();
     float scale[3];
     for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? float(bins) / extent[a] : 0.0f;
-    std::fill(bins_.begin(), bins_.begin() + 3 * bins, Bin{});
+    // Two sets of bins, even primitives into one and odd into the other, merged after:
+    // neighbours in the array are neighbours in space and mostly fall into the same bin, so
+    // with one set every update waited for the previous one to reach memory.
     Bin* bx = bins_.data();
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const PrimBox& p = prims_[i];
+    Bin* by = bx + 3 * bins;
+    std::fill(bx, by + 3 * bins, Bin{});
+    const vec4 scale4{scale[0], scale[1], scale[2], 0.0f};
+    const auto add = [&](Bin* set, const PrimBox& p) {
       const vec4 plo = p.lo4(), phi = p.hi4(), c = plo + phi;
+      std::int32_t k[4];  // bin_of on all three axes at once
+      mlib::truncate_clamp((c - lo) * scale4, 0, bins - 1, k);
       for (int a = 0; a < 3; ++a) {
-        Bin& b = bx[a * bins + bin_of(c[a], lo[a], scale[a], bins)];
+        Bin& b = set[a * bins + k[a]];
         b.box.lo = mlib::min(b.box.lo, plo);
         b.box.hi = mlib::max(b.box.hi, phi);
         b.cbox.grow(c);
         ++b.count;
       }
+    };
+    std::uint32_t i = begin;
+    for (; i + 1 < end; i += 2) {
+      add(bx, prims_[i]);
+      add(by, prims_[i + 1]);
+    }
+    if (i < end) add(bx, prims_[i]);
+    for (int k = 0; k < 3 * bins; ++k) {
+      bx[k].box.grow(by[k].box);
+      bx[k].cbox.grow(by[k].cbox);
+      bx[k].count += by[k].count;
     }
     float best_cost = kInfinity;
     int best_axis = -1, best_plane = 0;
@@ -211,11 +224,28 @@ class Builder {
       cbox.grow(b[k].cbox);
     }
     const float l = lo[best_axis], s = scale[best_axis];
-    PrimBox* p = prims_.data();
-    PrimBox* m = std::partition(p + begin, p + end, [&](const PrimBox& q) {
+    return partition(begin, end, [&](const PrimBox& q) {
       return bin_of(q.lo[best_axis] + q.hi[best_axis], l, s, bins) <= best_plane;
     });
-    return static_cast<std::uint32_t>(m - p);
+  }
+
+  // Moves the primitives for which left(p) holds to the front of [begin, end) and returns
+  // where the others start. Without a branch on left(p) (Lomuto's scheme, swapping every
+  // element, with the left run's end advanced by the predicate): which side a primitive
+  // falls on cannot be predicted, and std::partition's mispredicted branches cost more than
+  // the extra copies.
+  template <class Left>
+  std::uint32_t partition(std::uint32_t begin, std::uint32_t end, Left left) {
+    PrimBox* p = prims_.data();
+    std::uint32_t j = begin;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const PrimBox q = p[i];
+      const bool l = left(q);
+      p[i] = p[j];  // [j, i) holds right ones: p[j] is one, or j == i
+      p[j] = q;
+      j += l ? 1u : 0u;
+    }
+    return j;
   }
 
   static int bin_of(float c, float lo, float scale, int bins) {
@@ -231,7 +261,7 @@ class Builder {
   const BvhConfig& config_;
   Bvh& out_;
   std::vector<PrimBox> prims_;
-  std::vector<Bin> bins_;    // [axis][bin]
+  std::vector<Bin> bins_;    // [set][axis][bin], two sets (see sah)
   std::vector<Side> right_;  // [bin]: what lies right of the plane before it
 };
 

@@ -1,9 +1,11 @@
 // Every vec4 operation against a plain scalar reference on fixed-seed random inputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <random>
 #include <vector>
 
 #include "mlib/vec4_functions.h"
@@ -281,6 +283,28 @@ TEST(Vec4Functions, ToColorPacksRoundedClampedChannels) {
     const float r = u(rng), g = u(rng), b = u(rng);
     const auto expect = [](float c) { return std::uint32_t(std::nearbyint(c * 255.0f)); };
     ASSERT_EQ(to_color(vec4(r, g, b)), (expect(r) << 16) | (expect(g) << 8) | expect(b));
+  }
+}
+
+TEST(Vec4Functions, TruncateClampEqualsTheScalarCastClampedAndSendsNanAndHugeToLo) {
+  std::int32_t k[4];
+  truncate_clamp(vec4(2.99f, -0.99f, -1.5f, 16.0f), 0, 15, k);
+  EXPECT_EQ(k[0], 2);   // toward zero
+  EXPECT_EQ(k[1], 0);   // -0.99 truncates to 0
+  EXPECT_EQ(k[2], 0);   // -1 clamped up
+  EXPECT_EQ(k[3], 15);  // clamped down
+  // From memory the compiler cannot see into: folded at compile time, GCC saturates
+  // instead of giving the instruction's integer indefinite.
+  volatile float odd[4] = {std::nanf(""), 3.0e9f, -3.0e9f, INFINITY};
+  truncate_clamp(vec4(odd[0], odd[1], odd[2], odd[3]), -4, 7, k);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(k[i], -4) << i;  // no int32: the integer indefinite
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<float> u(-40.0f, 40.0f);
+  for (int n = 0; n < 1000; ++n) {
+    const vec4 v(u(rng), u(rng), u(rng), u(rng));
+    truncate_clamp(v * 1.0f, -8, 31, k);  // an expression, as callers pass
+    for (int i = 0; i < 4; ++i)
+      ASSERT_EQ(k[i], std::clamp(static_cast<std::int32_t>(v[i]), -8, 31)) << v[i];
   }
 }
 
