@@ -1,6 +1,7 @@
 // rt2/bvh/wide_build.cpp — collapsing the binary tree into the wide one (see wide_bvh.h).
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "rt2/bvh/wide_bvh.h"
 
@@ -72,9 +73,41 @@ class Collapser {
         out_.nodes.emplace_back();
       }
     }
+    set_octant_orders(w, n);
     out_.nodes[index] = w;
     for (int i = 0; i < n; ++i)
       if (!(w.child[i] & kLeaf)) fill(w.child[i], kids[i], depth + 1);
+  }
+
+  // WideNode::octant_order for the n children in slots [0, n). Each child's position is
+  // its rank, counted without a branch (a sort of eight random keys mispredicts about every
+  // other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
+  // opposite one). A node of two children keeps the identity order: the walk orders two
+  // children by their distances (wide_traverse.h).
+  static void set_octant_orders(WideNode<N>& w, int n) {
+    for (int j = 0; j < N; ++j) w.octant_order[j] = std::uint32_t(j) * 0x249249u;  // j in each field
+    if (n <= 2) return;
+    for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
+    float centre[3][N];  // doubled
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < n; ++i) centre[a][i] = w.bounds[2 * a][i] + w.bounds[2 * a + 1][i];
+    for (int o = 0; o < 4; ++o) {
+      float key[N];  // along the diagonal: farther is larger
+      for (int i = 0; i < n; ++i)
+        key[i] = ((o & 1 ? -centre[0][i] : centre[0][i]) + (o & 2 ? -centre[1][i] : centre[1][i])) +
+                 (o & 4 ? -centre[2][i] : centre[2][i]);
+      std::uint32_t slot_at[N];
+      for (int j = 0; j < N; ++j) slot_at[j] = std::uint32_t(j);  // the unused slots stay last
+      for (int i = 0; i < n; ++i) {
+        int rank = 0;  // the keys before key i: larger, or equal in a lower slot
+        for (int j = 0; j < n; ++j) rank += (key[j] > key[i]) | ((key[j] == key[i]) & (j < i));
+        slot_at[rank] = std::uint32_t(i);
+      }
+      for (int j = 0; j < N; ++j) {
+        const std::uint32_t backward = j < n ? slot_at[n - 1 - j] : slot_at[j];
+        w.octant_order[j] |= slot_at[j] << (3 * o) | backward << (3 * (7 - o));
+      }
+    }
   }
 
   static float area(const BvhNode& k) {

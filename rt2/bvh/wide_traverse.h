@@ -10,8 +10,11 @@
 // bound, because maxps / minps return their second operand for NaN: such a ray counts as
 // inside the slab.
 //
-// Closest hit: the children a ray enters are visited nearest first; the others wait on a
-// stack with their entry distance and are dropped when a closer hit is found. Ties between
+// Closest hit: of two children a ray enters, the nearer is visited first; three or more
+// are pushed in the node's order for the ray's octant (WideNode::octant_order: roughly
+// nearest first, without sorting, one compress_in_order in the 8-wide kernels; the 4-wide
+// kernel sorts them by distance), the top one visited. The others wait on a stack with
+// their entry distance and are dropped when a closer hit is found. Ties between
 // triangles at the same t go to the smaller triangle index, so the hit does not depend on
 // the order of the walk: BVH4 and BVH8 (and every ISA) give the same hit, bit for bit.
 // Any hit: no ordering at all; the walk stops as soon as `on_hit` says so.
@@ -51,6 +54,7 @@ struct NodeRay {
   using V = mlib::vfloat<N>;
   V org[3], inv_near[3], inv_far[3];
   int near[3], far[3];  // box rows (WideNode::bounds)
+  int order_shift = 0;  // 3 x the ray's octant: where WideNode::octant_order keeps its order
 
   explicit NodeRay(const Ray& r, const RayPre& pre) {
     for (int a = 0; a < 3; ++a) {
@@ -62,6 +66,7 @@ struct NodeRay {
       // 1/dir is +-inf for a zero component, with the zero's sign: the sign bit decides.
       near[a] = 2 * a + (std::signbit(pre.inv_dir[a]) ? 1 : 0);
       far[a] = near[a] ^ 1;
+      order_shift += 3 * ((near[a] & 1) << a);
     }
   }
 
@@ -106,6 +111,14 @@ struct StackEntry {
 template <int N>
 inline constexpr int kStackSize = (N - 1) * (kMaxBvhDepth + 1) + 1;
 
+// Whether the closest-hit walk pushes three or more children in their octant order with
+// mlib::compress_in_order (vfloat8: the AVX2 and AVX-512 kernels) rather than sorting them.
+template <int N>
+inline constexpr bool kPushInOctantOrder =
+    requires(mlib::vfloat<N> t, const std::uint32_t* p, std::uint32_t* q, float* f) {
+      compress_in_order(t, p, p, 0, 0u, f, q);  // found through t (mlib)
+    };
+
 // Lines of a node, and of a leaf block, fetched together when the walk decides to go there:
 // the first one would stall anyway, the others then arrive during that wait.
 template <int N>
@@ -134,7 +147,10 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   Hit h = result;  // a local: no store below can alias it
   TraversalCounts local;
-  StackEntry stack[kStackSize<N>];
+  // The pending subtrees and their entry distances, side by side (compress_in_order
+  // writes N lanes at a time: N - 1 entries of slack).
+  alignas(64) std::uint32_t stack_ref[kStackSize<N> + N - 1];
+  alignas(64) float stack_t[kStackSize<N> + N - 1];
   int sp = 0;
   std::uint32_t ref = bvh.root;
   alignas(64) float entry_t[N];
@@ -144,44 +160,56 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
       ++local.nodes;
       const WideNode<N>& node = bvh.nodes[ref];
       V entry;
-      unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t * kSlabPad), entry);
+      const unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t * kSlabPad), entry);
       if (mask == 0) goto pop;
-      {
-        unsigned i = static_cast<unsigned>(std::countr_zero(mask));
-        mask &= mask - 1;
-        if (mask == 0) {  // one child: no stack
-          ref = node.child[i];
-          prefetch_ref(bvh, blocks, ref);
-          continue;
-        }
-        entry.store(entry_t);
-        const unsigned i1 = static_cast<unsigned>(std::countr_zero(mask));
-        mask &= mask - 1;
-        if (mask == 0) {  // two (one node in four): push the farther, selected without a
-                          // branch (a mispredicted one costs more than the whole node test)
-          const StackEntry a{node.child[i], entry_t[i]}, b{node.child[i1], entry_t[i1]};
-          const bool a_first = a.t <= b.t;
-          stack[sp++] = a_first ? b : a;
-          prefetch_ref(bvh, blocks, stack[sp - 1].ref);
-          ref = a_first ? a.ref : b.ref;
-          prefetch_ref(bvh, blocks, ref);
-          continue;
-        }
-        // Three or more (one node in eight here): sort them by entry distance, farthest
-        // first. (A branch-free network for three measured slower than this.)
-        StackEntry hit[N] = {{node.child[i], entry_t[i]}, {node.child[i1], entry_t[i1]}};
-        int k = 2;
-        while (mask) {
-          i = static_cast<unsigned>(std::countr_zero(mask));
-          mask &= mask - 1;
-          hit[k++] = {node.child[i], entry_t[i]};
-        }
-        for (int a = 1; a < k; ++a)
-          for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
-        for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
-        for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
-        ref = hit[k - 1].ref;
+      const unsigned rest = mask & (mask - 1);
+      if (rest == 0) {  // one child: no stack
+        ref = node.child[std::countr_zero(mask)];
+        prefetch_ref(bvh, blocks, ref);
+        continue;
       }
+      if constexpr (kPushInOctantOrder<N>) {
+        if (rest & (rest - 1)) {  // three or more: pushed in their octant order, the
+                                  // nearest (roughly) on top, without a branch per child
+          sp += compress_in_order(entry, node.child, node.octant_order, nr.order_shift,
+                                        mask, stack_t + sp, stack_ref + sp) - 1;
+          ref = stack_ref[sp];
+          prefetch_ref(bvh, blocks, ref);
+          continue;
+        }
+      }
+      entry.store(entry_t);
+      const unsigned i = static_cast<unsigned>(std::countr_zero(mask));
+      const unsigned i1 = static_cast<unsigned>(std::countr_zero(rest));
+      if ((rest & (rest - 1)) == 0) {  // two (one node in four): push the farther, selected
+                                       // without a branch (a mispredicted one costs more
+                                       // than the whole node test)
+        const StackEntry a{node.child[i], entry_t[i]}, b{node.child[i1], entry_t[i1]};
+        const bool a_first = a.t <= b.t;
+        const StackEntry farther = a_first ? b : a;
+        stack_ref[sp] = farther.ref;
+        stack_t[sp++] = farther.t;
+        prefetch_ref(bvh, blocks, farther.ref);
+        ref = a_first ? a.ref : b.ref;
+        prefetch_ref(bvh, blocks, ref);
+        continue;
+      }
+      // Three or more (one node in eight here) in the 4-wide tree: sorted by entry
+      // distance, farthest first. (A branch-free network for three measured slower.)
+      StackEntry hit[N];
+      int k = 0;
+      for (unsigned m = mask; m; m &= m - 1) {
+        const unsigned c = static_cast<unsigned>(std::countr_zero(m));
+        hit[k++] = {node.child[c], entry_t[c]};
+      }
+      for (int a = 1; a < k; ++a)
+        for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
+      for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
+      for (int j = 0; j < k - 1; ++j) {
+        stack_ref[sp] = hit[j].ref;
+        stack_t[sp++] = hit[j].t;
+      }
+      ref = hit[k - 1].ref;
     }
     // A leaf: its blocks, until the one marked last.
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
@@ -205,9 +233,9 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
         if (counts) *counts += local;
         return;
       }
-      const StackEntry e = stack[--sp];
-      if (e.t <= h.t * kSlabPad) {
-        ref = e.ref;
+      --sp;
+      if (stack_t[sp] <= h.t * kSlabPad) {
+        ref = stack_ref[sp];
         break;
       }
     }

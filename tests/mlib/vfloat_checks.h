@@ -99,4 +99,43 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
   return failures;
 }
 
+// compress_in_order (vfloat8 only; the AVX2 or the AVX-512 form, whichever the calling unit
+// was built for) against the plain loop it stands for: every mask of eight lanes, under
+// permutations packed three bits a lane at every shift an octant order uses.
+template <class V>  // vfloat8: a template, so that only the units built for it instantiate it
+int check_compress_in_order(char (&first)[kFirstFailureSize]) {
+  int failures = 0;
+  first[0] = 0;
+  alignas(64) float t[8];
+  alignas(64) std::uint32_t ids[8], order[8];
+  for (int i = 0; i < 8; ++i) {
+    t[i] = 0.5f * float(i) - 1.0f;
+    ids[i] = 0x80000000u | std::uint32_t(100 + i);  // the top bit set, as a leaf reference
+  }
+  // Eight permutations, one per 3-bit field: field o of position j holds (j * (2o + 1) + o) & 7.
+  for (int j = 0; j < 8; ++j) {
+    order[j] = 0;
+    for (int o = 0; o < 8; ++o) order[j] |= std::uint32_t((j * (2 * o + 1) + o) & 7) << (3 * o);
+  }
+  const V vt = V::load(t);
+  for (int o = 0; o < 8; ++o)
+    for (unsigned hit = 0; hit < 256; ++hit) {
+      alignas(64) float t_out[8];
+      alignas(64) std::uint32_t id_out[8];
+      const int count = compress_in_order(vt, ids, order, 3 * o, hit, t_out, id_out);
+      int k = 0;
+      bool ok = true;
+      for (int j = 0; j < 8; ++j) {
+        const unsigned lane = order[j] >> (3 * o) & 7u;
+        if (!(hit >> lane & 1u)) continue;
+        ok = ok && t_out[k] == t[lane] && id_out[k] == ids[lane];
+        ++k;
+      }
+      ok = ok && count == k;
+      if (!ok && failures++ == 0)
+        std::snprintf(first, sizeof first, "compress_in_order: octant %d, mask 0x%02x", o, hit);
+    }
+  return failures;
+}
+
 }  // namespace mlib::test

@@ -8,6 +8,8 @@
 namespace mlib::test {
 int check_vfloat8(char (&first)[kFirstFailureSize]);   // vfloat8_checks.cpp
 int check_vfloat16(char (&first)[kFirstFailureSize]);  // vfloat16_checks.cpp
+int check_compress_in_order_avx2(char (&first)[kFirstFailureSize]);    // vfloat8_checks.cpp
+int check_compress_in_order_avx512(char (&first)[kFirstFailureSize]);  // vfloat16_checks.cpp
 namespace {
 
 TEST(Vfloat, FourLanesFollowIeeeAndTheDocumentedMaskAndNaNRules) {
@@ -26,6 +28,15 @@ TEST(Vfloat, SixteenLanesFollowTheSameRulesOnAnAvx512Cpu) {
   if (!__builtin_cpu_supports("avx512f")) GTEST_SKIP() << "this CPU has no AVX-512";
   char first[kFirstFailureSize];
   EXPECT_EQ(check_vfloat16(first), 0) << "first failure: " << first;
+}
+
+TEST(Vfloat, CompressInOrderEqualsThePlainLoopForEveryMaskAndOctantWithAvx2AndAvx512) {
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("bmi2"))
+    GTEST_SKIP() << "this CPU has no AVX2 and BMI2";
+  char first[kFirstFailureSize];
+  EXPECT_EQ(check_compress_in_order_avx2(first), 0) << "AVX2: " << first;
+  if (!__builtin_cpu_supports("avx512vl") || !__builtin_cpu_supports("avx512dq")) return;
+  EXPECT_EQ(check_compress_in_order_avx512(first), 0) << "AVX-512: " << first;
 }
 #endif
 

@@ -189,6 +189,60 @@ TEST(Bvh, TheWideTreeHoldsEveryTriangleOnceInBlocksUnderItsParentsBox) {
     }
 }
 
+// Every node's octant orders (WideNode::octant_order) list each slot once per octant:
+// first the children, farthest first along the octant's diagonal (by their boxes'
+// centres), then the unused slots; octant 7 - o is octant o reversed; a node of two
+// children or fewer keeps the identity (the walk orders two children by distance).
+template <int N>
+void expect_octant_orders(const Accel& acc) {
+  const WideBvh<N>& w = acc.wide<N>();
+  for (const WideNode<N>& node : w.nodes) {
+    int n = 0;
+    while (n < N && !(node.bounds[0][n] > node.bounds[1][n])) ++n;
+    for (int o = 0; o < 8; ++o) {
+      int slot[N];
+      unsigned seen = 0;
+      for (int j = 0; j < N; ++j) {
+        slot[j] = int(node.octant_order[j] >> (3 * o) & 7u);
+        ASSERT_LT(slot[j], N);
+        seen |= 1u << slot[j];
+      }
+      ASSERT_EQ(seen, (1u << N) - 1) << "octant " << o << ": not a permutation";
+      if (n <= 2) {
+        for (int j = 0; j < N; ++j) EXPECT_EQ(slot[j], j);
+        continue;
+      }
+      const auto key = [&](int i) {
+        double k = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double c = double(node.bounds[2 * a][i]) + node.bounds[2 * a + 1][i];
+          k += (o >> a & 1) ? -c : c;
+        }
+        return k;
+      };
+      for (int j = 0; j < N; ++j) EXPECT_EQ(j < n, slot[j] < n) << "children come first";
+      for (int j = 1; j < n; ++j)
+        EXPECT_GE(key(slot[j - 1]), key(slot[j]) - 1e-6 * (1.0 + std::fabs(key(slot[j]))))
+            << "octant " << o << ", position " << j;
+      for (int j = 0; j < n; ++j)
+        EXPECT_EQ(int(node.octant_order[j] >> (3 * (7 - o)) & 7u), slot[n - 1 - j])
+            << "octant " << 7 - o << " is octant " << o << " reversed";
+    }
+  }
+}
+
+TEST(Bvh, OctantOrdersListEverySlotOnceChildrenFarthestFirstAlongTheDiagonal) {
+  const Scene scene = test::geometry_scene({test::random_soup(3000, 0.2f, 15)});
+  for (std::uint32_t leaf : {1u, 4u, 16u})
+    for (Isa isa : test::runnable_isas()) {
+      const Accel acc = Accel::build(scene, BvhConfig{leaf, Split::sah, 16}, isa);
+      if (bvh_width(isa) == 8)
+        expect_octant_orders<8>(acc);
+      else
+        expect_octant_orders<4>(acc);
+    }
+}
+
 TEST(Bvh, CollapsingMakesFewerNodesThanTheBinaryTree) {
   const Scene scene = test::geometry_scene({test::random_soup(10000, 0.1f, 14)});
   for (Isa isa : test::runnable_isas()) {
