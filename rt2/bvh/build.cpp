@@ -1,9 +1,9 @@
 // rt2/bvh/build.cpp — top-down BVH construction: midpoint or binned SAH splits.
 //
 // The primitives travel as 32-byte records (box and index) that each split partitions in
-// place, so every pass over a node's primitives reads memory in order. A node's bounds and
-// centroid bounds come from its parent's bins (or, after a median split, from one pass),
-// and one pass bins all three axes at once.
+// place, so every pass over a node's primitives reads memory in order. A node's bounds
+// come from its parent's bins and its centroid bounds from a pass after the partition (after
+// a median split, one pass gives both), and one pass bins all three axes at once.
 #include "rt2/bvh/build.h"
 
 #include <algorithm>
@@ -32,7 +32,7 @@ struct PrimBox {
 static_assert(sizeof(PrimBox) == 32);
 
 struct Bin {
-  Aabb box, cbox;  // the primitives' boxes, and their (doubled) centroids
+  Aabb box;  // the primitives' boxes
   std::uint32_t count = 0;
 };
 
@@ -171,7 +171,6 @@ class Builder {
         Bin& b = set[a * bins + k[a]];
         b.box.lo = mlib::min(b.box.lo, plo);
         b.box.hi = mlib::max(b.box.hi, phi);
-        b.cbox.grow(c);
         ++b.count;
       }
     };
@@ -183,7 +182,6 @@ class Builder {
     if (i < end) add(bx, prims_[i]);
     for (int k = 0; k < 3 * bins; ++k) {
       bx[k].box.grow(by[k].box);
-      bx[k].cbox.grow(by[k].cbox);
       bx[k].count += by[k].count;
     }
     float best_cost = kInfinity;
@@ -215,18 +213,31 @@ class Builder {
       }
     }
     if (best_axis < 0) return begin;
-    lb = lcb = rb = rcb = Aabb();
+    lb = rb = Aabb();
     const Bin* b = bx + best_axis * bins;
-    for (int k = 0; k < bins; ++k) {
-      Aabb& box = k <= best_plane ? lb : rb;
-      Aabb& cbox = k <= best_plane ? lcb : rcb;
-      box.grow(b[k].box);
-      cbox.grow(b[k].cbox);
-    }
+    for (int k = 0; k < bins; ++k) (k <= best_plane ? lb : rb).grow(b[k].box);
     const float l = lo[best_axis], s = scale[best_axis];
-    return partition(begin, end, [&](const PrimBox& q) {
+    const std::uint32_t mid = partition(begin, end, [&](const PrimBox& q) {
       return bin_of(q.lo[best_axis] + q.hi[best_axis], l, s, bins) <= best_plane;
     });
+    // The sides' centroid bounds in a pass of their own: cheaper than a centroid box per
+    // bin, updated three times per primitive during binning.
+    lcb = centroid_bounds(begin, mid);
+    rcb = centroid_bounds(mid, end);
+    return mid;
+  }
+
+  // The (doubled) centroid bounds of prims_[begin, end), two primitives at a time.
+  Aabb centroid_bounds(std::uint32_t begin, std::uint32_t end) const {
+    Aabb even, odd;
+    std::uint32_t i = begin;
+    for (; i + 1 < end; i += 2) {
+      even.grow(prims_[i].centroid2());
+      odd.grow(prims_[i + 1].centroid2());
+    }
+    if (i < end) even.grow(prims_[i].centroid2());
+    even.grow(odd);
+    return even;
   }
 
   // Moves the primitives for which left(p) holds to the front of [begin, end) and returns
