@@ -21,7 +21,7 @@
 // compress_in_order(vfloat8, ...): one file per instruction set.
 #if defined(__AVX512VL__) && defined(__AVX512DQ__) && !defined(MLIB_SCALAR)
 #include "mlib/vfloat8_order_avx512.h"
-#elif defined(__AVX2__) && defined(__BMI2__) && !defined(MLIB_SCALAR)
+#elif defined(__AVX2__) && !defined(MLIB_SCALAR)
 #include "mlib/vfloat8_order_avx2.h"
 #endif
 

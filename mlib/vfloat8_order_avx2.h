@@ -1,21 +1,36 @@
-// mlib/vfloat8_order_avx2.h — compress_in_order for vfloat8 on AVX2 (with BMI2): the lanes
-// a mask selects, in a given order, written without gaps. Its sibling for AVX-512
+// mlib/vfloat8_order_avx2.h — compress_in_order for vfloat8 on AVX2: the lanes a mask
+// selects, in a given order, written without gaps. Its sibling for AVX-512
 // (vfloat8_order_avx512.h) does the same with the compress instructions; mlib/vfloat.h
-// includes the one the translation unit was built for.
+// includes the one the translation unit was built for. Each lives in an inline namespace
+// of its own, so the two never share a symbol (both are called as mlib::compress_in_order).
 #pragma once
 
 #include <immintrin.h>
 
+#include <array>
 #include <bit>
 #include <cstdint>
 
 #include "mlib/vfloat8_avx2.h"
 
-#if !defined(__AVX2__) || !defined(__BMI2__)
-#error "mlib/vfloat8_order_avx2.h needs AVX2 and BMI2"
+#if !defined(__AVX2__)
+#error "mlib/vfloat8_order_avx2.h needs AVX2: include it only from a translation unit built for it"
 #endif
 
 namespace mlib {
+inline namespace avx2_order {
+
+// For each 8-bit mask, the indices of its set bits packed into bytes from the lowest one
+// (a table, not pdep / pext: those are microcoded and slow on AMD before Zen 3). 2 KiB.
+inline constexpr std::array<std::uint64_t, 256> kPackedLanes = [] {
+  std::array<std::uint64_t, 256> table{};
+  for (unsigned mask = 0; mask < 256; ++mask) {
+    int k = 0;
+    for (unsigned lane = 0; lane < 8; ++lane)
+      if (mask >> lane & 1u) table[mask] |= std::uint64_t(lane) << (8 * k++);
+  }
+  return table;
+}();
 
 // The lanes of `t`, and of the eight integers at `ids`, that `hit` selects (bit i: lane i),
 // in the order `order` lists them: position j names lane (order[j] >> shift) & 7 (order
@@ -34,11 +49,9 @@ MLIB_INLINE int compress_in_order(vfloat8 t, const std::uint32_t* ids, const std
       _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(hit)), bit), bit);
   const auto at = static_cast<unsigned>(
       _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_permutevar8x32_epi32(selected, idx))));
-  // The selected positions, packed to the front: one byte each, by pdep and pext.
-  const std::uint64_t bytes = _pdep_u64(at, 0x0101010101010101ull) * 0xffu;
-  const std::uint64_t packed = _pext_u64(0x0706050403020100ull, bytes);
+  // The selected positions packed to the front, then the lanes they name.
   const __m256i from = _mm256_permutevar8x32_epi32(
-      idx, _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(packed))));
+      idx, _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kPackedLanes[at]))));
   _mm256_storeu_ps(t_out, _mm256_permutevar8x32_ps(t.v, from));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(id_out),
                       _mm256_permutevar8x32_epi32(
@@ -46,4 +59,5 @@ MLIB_INLINE int compress_in_order(vfloat8 t, const std::uint32_t* ids, const std
   return std::popcount(hit & 0xffu);
 }
 
+}  // namespace avx2_order
 }  // namespace mlib

@@ -1,6 +1,6 @@
 // mlib/vfloat8_order_avx512.h — compress_in_order for vfloat8 on AVX-512 (VL, DQ): the
 // sibling of vfloat8_order_avx2.h (see there for what it does), with the compress
-// instructions in place of the byte tricks.
+// instructions in place of the table and permute.
 #pragma once
 
 #include <immintrin.h>
@@ -15,6 +15,7 @@
 #endif
 
 namespace mlib {
+inline namespace avx512_order {
 
 MLIB_INLINE int compress_in_order(vfloat8 t, const std::uint32_t* ids, const std::uint32_t* order,
                                   int shift, unsigned hit, float* t_out, std::uint32_t* id_out) {
@@ -32,4 +33,5 @@ MLIB_INLINE int compress_in_order(vfloat8 t, const std::uint32_t* ids, const std
   return std::popcount(hit & 0xffu);
 }
 
+}  // namespace avx512_order
 }  // namespace mlib

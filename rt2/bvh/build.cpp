@@ -10,6 +10,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "rt2/error.h"
@@ -259,8 +260,12 @@ class Builder {
     return j;
   }
 
+  // The bin of a doubled centroid coordinate: exactly what mlib::truncate_clamp gives the
+  // binning loop (truncation; NaN and values beyond int32 to bin 0), so that the partition
+  // puts every primitive on the side its bin was counted on.
   static int bin_of(float c, float lo, float scale, int bins) {
-    const int k = static_cast<int>((c - lo) * scale);
+    const float x = (c - lo) * scale;
+    const int k = x >= -2147483648.0f && x < 2147483648.0f ? static_cast<int>(x) : INT32_MIN;
     return std::clamp(k, 0, bins - 1);
   }
 

@@ -88,9 +88,10 @@ class Collapser {
     for (int j = 0; j < N; ++j) w.octant_order[j] = std::uint32_t(j) * 0x249249u;  // j in each field
     if (n <= 2) return;
     for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
-    float centre[3][N];  // doubled
+    float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
     for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < n; ++i) centre[a][i] = w.bounds[2 * a][i] + w.bounds[2 * a + 1][i];
+      for (int i = 0; i < n; ++i)
+        centre[a][i] = w.bounds[2 * a][i] * 0.5f + w.bounds[2 * a + 1][i] * 0.5f;
     for (int o = 0; o < 4; ++o) {
       float key[N];  // along the diagonal: farther is larger
       for (int i = 0; i < n; ++i)

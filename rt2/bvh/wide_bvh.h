@@ -34,12 +34,13 @@ struct alignas(64) WideNode {
   // ray picks its near row per axis as 2a + (direction < 0) and its far row as near ^ 1.
   float bounds[6][N];
   std::uint32_t child[N];
-  // The children in the order a ray of octant o meets them, roughly: bits [3o, 3o + 3) of
-  // octant_order[j] name the slot at position j, the children sorted by their boxes'
-  // centres along the octant's diagonal, farthest first, then the unused slots. Octant o
-  // has bit a set when the direction's component a is negative (as the near rows above).
-  // A walk pushes the children it enters in this order, without sorting them by distance
-  // (Fuetterling et al. 2017, "Accelerated Single Ray Tracing for Wide Vector Units").
+  // The children along each direction octant's diagonal: bits [3o, 3o + 3) of
+  // octant_order[j] name the slot at position j for octant o, the children sorted by their
+  // boxes' centres along the diagonal, farthest first, then the unused slots. Octant o has
+  // bit a set when the direction's component a is negative (as the near rows above). The
+  // 8-wide walks push the children a ray enters in this order, so that the nearest ends on
+  // top, without sorting them by distance (Fuetterling et al. 2017, "Accelerated Single Ray
+  // Tracing for Wide Vector Units"); the 4-wide walk sorts, and leaves it unread.
   std::uint32_t octant_order[N];
 };
 static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);

@@ -102,6 +102,10 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
 // compress_in_order (vfloat8 only; the AVX2 or the AVX-512 form, whichever the calling unit
 // was built for) against the plain loop it stands for: every mask of eight lanes, under
 // permutations packed three bits a lane at every shift an octant order uses.
+// In an unnamed namespace: the AVX2 and the AVX-512 units each instantiate it for vfloat8
+// with their own compress_in_order, and two bodies under one symbol would leave the
+// linker to pick either.
+namespace {
 template <class V>  // vfloat8: a template, so that only the units built for it instantiate it
 int check_compress_in_order(char (&first)[kFirstFailureSize]) {
   int failures = 0;
@@ -137,5 +141,6 @@ int check_compress_in_order(char (&first)[kFirstFailureSize]) {
     }
   return failures;
 }
+}  // namespace
 
 }  // namespace mlib::test
