@@ -173,8 +173,8 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
       if constexpr (kPushInOctantOrder<N>) {
         if (rest & (rest - 1)) {  // three or more: pushed in their octant order, the
                                   // nearest (roughly) on top, without a branch per child
-          sp += compress_in_order(entry, node.child, node.octant_order, nr.order_shift,
-                                        mask, stack_t + sp, stack_ref + sp) - 1;
+          sp += compress_in_order(entry, node.child, node.octant_order, nr.order_shift, mask,
+                                  stack_t + sp, stack_ref + sp) - 1;
           ref = stack_ref[sp];
           prefetch_ref(bvh, blocks, ref);
           continue;
