@@ -1,7 +1,6 @@
 // rt2/bvh/wide_build.cpp — collapsing the binary tree into the wide one (see wide_bvh.h).
 #include <algorithm>
 #include <limits>
-#include <utility>
 
 #include "rt2/bvh/wide_bvh.h"
 
