@@ -7,7 +7,6 @@
 
 #include <immintrin.h>
 
-#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -21,13 +20,18 @@ namespace mlib {
 inline namespace avx2_order {
 
 // For each 8-bit mask, the indices of its set bits packed into bytes from the lowest one
-// (a table, not pdep / pext: those are microcoded and slow on AMD before Zen 3). 2 KiB.
-inline constexpr std::array<std::uint64_t, 256> kPackedLanes = [] {
-  std::array<std::uint64_t, 256> table{};
+// (a table, not pdep / pext: those are microcoded and slow on AMD before Zen 3). 2 KiB. A
+// plain array in a struct, not std::array: no library template gets instantiated in a
+// unit built for AVX2, where the linker could pick its copy for the portable code.
+struct PackedLanes {
+  std::uint64_t of[256];
+};
+inline constexpr PackedLanes kPackedLanes = [] {
+  PackedLanes table{};
   for (unsigned mask = 0; mask < 256; ++mask) {
     int k = 0;
     for (unsigned lane = 0; lane < 8; ++lane)
-      if (mask >> lane & 1u) table[mask] |= std::uint64_t(lane) << (8 * k++);
+      if (mask >> lane & 1u) table.of[mask] |= std::uint64_t(lane) << (8 * k++);
   }
   return table;
 }();
@@ -51,7 +55,7 @@ MLIB_INLINE int compress_in_order(vfloat8 t, const std::uint32_t* ids, const std
       _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_permutevar8x32_epi32(selected, idx))));
   // The selected positions packed to the front, then the lanes they name.
   const __m256i from = _mm256_permutevar8x32_epi32(
-      idx, _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kPackedLanes[at]))));
+      idx, _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kPackedLanes.of[at]))));
   _mm256_storeu_ps(t_out, _mm256_permutevar8x32_ps(t.v, from));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(id_out),
                       _mm256_permutevar8x32_epi32(
