@@ -24,10 +24,17 @@ class Interactive : public rt2::test::Cli {
     if (!RT2_HAVE_VIEWER) FAIL() << "rt2cpr was built without the viewer (libsdl2-dev, libimgui-dev)";
     ASSERT_EQ(std::system("command -v xvfb-run >/dev/null"), 0) << "xvfb-run is missing (Debian's xvfb)";
   }
-  // rt2cpr in a window of an X server of its own, from the test's folder.
+  // rt2cpr in a window of an X server of its own, from the test's folder. Its exit status
+  // is read from a file a shell inside xvfb-run writes: xvfb-run's own status can replace
+  // the program's (5 when it could not clean up its temporary folder, seen under load).
   Outcome run_window(const std::string& args) const {
-    return run_in("cd " + dir_.root().string() + " && " + std::string(rt2::test::kChildEnv) +
-                  "xvfb-run -a -s '-screen 0 1024x768x24' " + RT2CPR_BIN + " --interactive " + args);
+    std::filesystem::remove(path("status"));
+    Outcome o = run_in("cd " + dir_.root().string() + " && " + std::string(rt2::test::kChildEnv) +
+                       "xvfb-run -a -s '-screen 0 1024x768x24' sh -c '" + RT2CPR_BIN +
+                       " --interactive " + args + "; echo $? >" + path("status") + "'");
+    const std::string status = slurp(path("status"));
+    if (!status.empty()) o.status = std::stoi(status);  // else xvfb-run's (it did not start)
+    return o;
   }
   Outcome run_in(const std::string& cmd) const {
     const int raw = std::system((cmd + " >" + path("stdout") + " 2>" + path("stderr")).c_str());
