@@ -164,10 +164,15 @@ class Builder {
     Bin* by = bx + 3 * bins;
     std::fill(bx, by + 3 * bins, Bin{});
     const vec4 scale4{scale[0], scale[1], scale[2], 0.0f};
+    // A primitive's bin on each axis (its doubled centroid's), k[0 .. 2]: the binning and
+    // the partition below both take it from here, so they cannot disagree.
+    const auto bins_of = [&](const PrimBox& p, std::int32_t (&k)[4]) {
+      mlib::truncate_clamp((p.centroid2() - lo) * scale4, 0, bins - 1, k);
+    };
     const auto add = [&](Bin* set, const PrimBox& p) {
-      const vec4 plo = p.lo4(), phi = p.hi4(), c = plo + phi;
-      std::int32_t k[4];  // bin_of on all three axes at once
-      mlib::truncate_clamp((c - lo) * scale4, 0, bins - 1, k);
+      const vec4 plo = p.lo4(), phi = p.hi4();
+      std::int32_t k[4];
+      bins_of(p, k);
       for (int a = 0; a < 3; ++a) {
         Bin& b = set[a * bins + k[a]];
         b.box.lo = mlib::min(b.box.lo, plo);
@@ -217,9 +222,10 @@ class Builder {
     lb = rb = Aabb();
     const Bin* b = bx + best_axis * bins;
     for (int k = 0; k < bins; ++k) (k <= best_plane ? lb : rb).grow(b[k].box);
-    const float l = lo[best_axis], s = scale[best_axis];
     const std::uint32_t mid = partition(begin, end, [&](const PrimBox& q) {
-      return bin_of(q.lo[best_axis] + q.hi[best_axis], l, s, bins) <= best_plane;
+      std::int32_t k[4];
+      bins_of(q, k);
+      return k[best_axis] <= best_plane;
     });
     // The sides' centroid bounds in a pass of their own: cheaper than a centroid box per
     // bin, updated three times per primitive during binning.
@@ -258,15 +264,6 @@ class Builder {
       j += l ? 1u : 0u;
     }
     return j;
-  }
-
-  // The bin of a doubled centroid coordinate: exactly what mlib::truncate_clamp gives the
-  // binning loop (truncation; NaN and values beyond int32 to bin 0), so that the partition
-  // puts every primitive on the side its bin was counted on.
-  static int bin_of(float c, float lo, float scale, int bins) {
-    const float x = (c - lo) * scale;
-    const int k = x >= -2147483648.0f && x < 2147483648.0f ? static_cast<int>(x) : INT32_MIN;
-    return std::clamp(k, 0, bins - 1);
   }
 
   struct Side {
