@@ -37,9 +37,7 @@ bool Film::mean(std::size_t i, float* rgb) const {
 
 std::uint64_t Film::resolve(Image& image) const {
   if (image.width != width_ || image.height != height_) image = Image(width_, height_);
-  std::uint64_t nonfinite = 0;
-  for (std::size_t i = 0; i < sum_.size(); ++i) nonfinite += !mean(i, &image.rgb[3 * i]);
-  return nonfinite;
+  return resolve(Tile{0, 0, width_, height_}, image.rgb.data());
 }
 
 std::uint64_t Film::resolve(const Tile& tile, float* rgb) const {

@@ -46,6 +46,14 @@ void run_omp(int threads, int portions, const std::function<void(int)>& work) {
   for (int i = 0; i < portions; ++i) work(i);
 }
 
+void run(Backend backend, int threads, int portions, const std::function<void(int)>& work) {
+  switch (backend) {
+    case Backend::serial: run_serial(portions, work); break;
+    case Backend::omp: run_omp(threads, portions, work); break;
+    case Backend::tbb: run_tbb(threads, portions, work); break;
+  }
+}
+
 }  // namespace detail
 
 std::vector<Tile> make_tiles(const Schedule& schedule, int width, int height) {
@@ -64,8 +72,12 @@ std::vector<Tile> make_tiles(const Schedule& schedule, int width, int height) {
         tiles.push_back({x, y, std::min(x + schedule.tile, width), std::min(y + schedule.tile, height)});
     return tiles;
   }
-  const long long wanted = static_cast<long long>(effective_threads(schedule)) * schedule.grain;
-  const int bands = static_cast<int>(std::min<long long>(wanted, height));
+  return make_bands(width, height, static_cast<long long>(effective_threads(schedule)) * schedule.grain);
+}
+
+std::vector<Tile> make_bands(int width, int height, long long count) {
+  const int bands = static_cast<int>(std::min<long long>(count, height));
+  std::vector<Tile> tiles;
   for (int i = 0; i < bands; ++i)
     tiles.push_back({0, static_cast<int>(static_cast<long long>(height) * i / bands), width,
                      static_cast<int>(static_cast<long long>(height) * (i + 1) / bands)});
@@ -96,11 +108,7 @@ FrameResult render_pass(const Renderer& renderer, const Schedule& schedule, Film
   };
   const int threads = effective_threads(schedule);
   const auto t0 = std::chrono::steady_clock::now();
-  switch (schedule.backend) {
-    case Backend::serial: detail::run_serial(n, work); break;
-    case Backend::omp: detail::run_omp(threads, n, work); break;
-    case Backend::tbb: detail::run_tbb(threads, n, work); break;
-  }
+  detail::run(schedule.backend, threads, n, work);
   result.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   result.complete = !skipped;
   return result;

@@ -67,6 +67,12 @@ namespace detail {
 void run_serial(int portions, const std::function<void(int)>& work);
 void run_omp(int threads, int portions, const std::function<void(int)>& work);
 void run_tbb(int threads, int portions, const std::function<void(int)>& work);
+// The one `backend` names (serial ignores `threads`).
+void run(Backend backend, int threads, int portions, const std::function<void(int)>& work);
 }  // namespace detail
+
+// `count` bands of whole rows over a width x height image (at most one per row), top to
+// bottom, as even as rows allow: make_tiles' --tile 0.
+std::vector<Tile> make_bands(int width, int height, long long count);
 
 }  // namespace rt2

@@ -36,26 +36,25 @@ rt2::CompiledScene compile_at_camera(rt2::Scene& scene, const Options& o) {
 
 namespace {
 
-rt2::Scene load_with_lights(const Options& o, double& ms) {
+// make(), with the milliseconds it took into `ms`.
+template <class Make>
+auto timed(double& ms, Make make) {
   const auto t0 = Clock::now();
-  rt2::Scene scene = load_scene(o);
-  set_lights(scene, o.lights, o.light_range);
+  auto made = make();
   ms = ms_since(t0);
-  return scene;
-}
-
-rt2::CompiledScene compile_timed(rt2::Scene& scene, const Options& o, double& ms) {
-  const auto t0 = Clock::now();
-  rt2::CompiledScene compiled = compile_at_camera(scene, o);
-  ms = ms_since(t0);
-  return compiled;
+  return made;
 }
 
 }  // namespace
 
 RenderSetup::RenderSetup(const Options& o)
-    : scene(load_with_lights(o, load_ms)),
-      compiled(compile_timed(scene, o, build_ms)),
+    : scene(timed(load_ms,
+                  [&] {
+                    rt2::Scene s = load_scene(o);
+                    set_lights(s, o.lights, o.light_range);
+                    return s;
+                  })),
+      compiled(timed(build_ms, [&] { return compile_at_camera(scene, o); })),
       renderer(compiled, rt2::View{scene.camera, o.render}),
       film(o.render.width, o.render.height) {}
 

@@ -33,17 +33,12 @@ void wait(MPI_Request& request, const Between& between, std::chrono::microsecond
   }
 }
 
-void send_bytes(int dest, int tag, const std::vector<std::byte>& bytes, const Between& between) {
+void send_text(int dest, int tag, const std::string& text) {
   MPI_Request request;
-  check(MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, dest, tag,
+  check(MPI_Isend(text.data(), static_cast<int>(text.size()), MPI_BYTE, dest, tag,
                   MPI_COMM_WORLD, &request),
         "MPI_Isend");
-  wait(request, between);
-}
-
-void send_text(int dest, int tag, const std::string& text, const Between& between) {
-  const auto* p = reinterpret_cast<const std::byte*>(text.data());
-  send_bytes(dest, tag, std::vector<std::byte>(p, p + text.size()), between);
+  wait(request);
 }
 
 std::vector<std::byte> receive(const MPI_Status& probed) {
@@ -60,13 +55,12 @@ std::string text_of(const std::vector<std::byte>& bytes) {
   return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
-std::string receive_text(int source, int tag, const Between& between) {
+std::string receive_text(int source, int tag) {
   for (;;) {
     int found = 0;
     MPI_Status status;
     check(MPI_Iprobe(source, tag, MPI_COMM_WORLD, &found, &status), "MPI_Iprobe");
     if (found) return text_of(receive(status));
-    if (between) between();
     std::this_thread::sleep_for(kPollIdle);
   }
 }

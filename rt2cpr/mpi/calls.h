@@ -42,21 +42,17 @@ void check(int rc, const char* call);
 void wait(MPI_Request& request, const Between& between = {},
           std::chrono::microseconds poll = kPollIdle);
 
-// Sends `bytes` to rank `dest` with `tag` and waits until they are out.
-void send_bytes(int dest, int tag, const std::vector<std::byte>& bytes,
-                const Between& between = {});
-
 // The message `probed` announced (MPI_Iprobe's status), received whole.
 std::vector<std::byte> receive(const MPI_Status& probed);
 
 // Sends `text` (its bytes, no terminator) to rank `dest` with `tag` and waits until it is out.
-void send_text(int dest, int tag, const std::string& text, const Between& between = {});
+void send_text(int dest, int tag, const std::string& text);
 
 // A message's bytes as text.
 std::string text_of(const std::vector<std::byte>& bytes);
 
 // Waits for a message of `tag` from `source` and returns its bytes as text.
-std::string receive_text(int source, int tag, const Between& between = {});
+std::string receive_text(int source, int tag);
 
 // A trivially copyable value as bytes, and back (throws rt2::Error on a size mismatch:
 // a message that is not what the protocol says).

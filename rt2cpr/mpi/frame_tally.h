@@ -17,6 +17,16 @@ struct FrameTally {
   std::uint64_t nonfinite_pixels = 0;  // Film::resolve's count over its tiles
   double busy_ms = 0.0;   // its render threads' time in tiles, summed over the threads
   double serve_ms = 0.0;  // rank 0: its main thread's time handling messages
+
+  FrameTally& operator+=(const FrameTally& o) {
+    rays += o.rays;
+    tiles += o.tiles;
+    bytes_sent += o.bytes_sent;
+    nonfinite_pixels += o.nonfinite_pixels;
+    busy_ms += o.busy_ms;
+    serve_ms += o.serve_ms;
+    return *this;
+  }
 };
 static_assert(std::is_trivially_copyable_v<FrameTally>);
 

@@ -29,12 +29,10 @@ struct Peer {
 // The tiles of a frame: --tile N squares, as in one process; by default (--tile 0) bands of
 // rows, threads x grain of them over all the ranks' threads (at most one per row).
 std::vector<rt2::Tile> job_tiles(const Options& o, int all_threads) {
-  rt2::Schedule s = o.schedule;
-  if (s.tile == 0) {  // as many bands as one serial thread's `grain`
-    const long long bands = static_cast<long long>(all_threads) * s.grain;
-    s = {rt2::Backend::serial, 1, static_cast<int>(std::min<long long>(bands, 1'000'000)), 0};
-  }
-  return rt2::make_tiles(s, o.render.width, o.render.height);
+  if (o.schedule.tile == 0)
+    return rt2::make_bands(o.render.width, o.render.height,
+                           static_cast<long long>(all_threads) * o.schedule.grain);
+  return rt2::make_tiles(o.schedule, o.render.width, o.render.height);
 }
 
 // Rank 0, while it waits: a worker's failure ends the wait (and the job).

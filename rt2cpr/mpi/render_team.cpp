@@ -68,11 +68,7 @@ void RenderTeam::run_frames(const rt2::Renderer& renderer, rt2::Film& film,
       if (quit_) return;
     }
     try {
-      switch (schedule.backend) {
-        case rt2::Backend::serial: rt2::detail::run_serial(1, work); break;
-        case rt2::Backend::omp: rt2::detail::run_omp(threads, threads, work); break;
-        case rt2::Backend::tbb: rt2::detail::run_tbb(threads, threads, work); break;
-      }
+      rt2::detail::run(schedule.backend, threads, threads, work);  // a loop per thread
     } catch (...) {  // the backend itself (a loop catches its own)
       record_failure();
     }
@@ -104,10 +100,7 @@ void RenderTeam::loop(const rt2::Renderer& renderer, rt2::Film& film) {
     record_failure();
   }
   const std::lock_guard<std::mutex> lock(mutex_);
-  tally_.rays += mine.rays;
-  tally_.tiles += mine.tiles;
-  tally_.nonfinite_pixels += mine.nonfinite_pixels;
-  tally_.busy_ms += mine.busy_ms;
+  tally_ += mine;
 }
 
 void RenderTeam::record_failure() {

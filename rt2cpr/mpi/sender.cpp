@@ -27,8 +27,8 @@ void Sender::reap() {
   });
 }
 
-void Sender::drain(const Between& between) {
-  for (Pending& p : pending_) wait(p.request, between);
+void Sender::drain() {
+  for (Pending& p : pending_) wait(p.request);
   pending_.clear();
 }
 

@@ -26,7 +26,7 @@ class Sender {
   // Forgets the sends that are complete.
   void reap();
   // Waits until every send is complete.
-  void drain(const Between& between = {});
+  void drain();
   std::uint64_t bytes_sent() const { return bytes_sent_; }
 
  private:
