@@ -2,6 +2,7 @@
 // (glTF 2.0's model; rt2/brdf.h).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -62,7 +63,13 @@ struct Material {
 
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.
-  vec4 diffuse_at(const vec4& p) const;
+  // Inline: the render kernel calls it per hit.
+  vec4 diffuse_at(const vec4& p) const {
+    if (!(checker_scale > 0.0f)) return diffuse;
+    const float inv = 1.0f / checker_scale;
+    const auto cell = [&](int a) { return static_cast<long long>(std::floor(p[a] * inv)); };
+    return ((cell(0) + cell(1) + cell(2)) & 1) ? diffuse2 : diffuse;
+  }
 };
 
 }  // namespace rt2
