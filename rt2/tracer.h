@@ -55,7 +55,7 @@ namespace detail {
 // that reaches the surface the term Kd I (L·N) + Ks I (R·V)^n (times the light's range
 // window, light.h) into the shadow batch, to be scaled by what passes (thesis 3.2; SPEC
 // "Shading"). `lights` holds every light in range, in scene order, whatever the culling.
-inline void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
+MLIB_INLINE void shade(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
                   LightList lights, float pixel_angle, Batches& b, RayCounts& counts) {
   const Material& m = sc.materials[s.material];
   const vec4 weight = r.weight();
