@@ -149,6 +149,16 @@ MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int
                    _mm_min_epi32(_mm_max_epi32(i, _mm_set1_epi32(lo)), _mm_set1_epi32(hi)));
 }
 
+// Each lane's bits, read as an int32, plus k truncated toward zero (NaN and values outside
+// int32 give INT32_MIN), or minus it where a < 0, wrapping: a moved by trunc(k) floats,
+// away from zero for k > 0 (Wächter and Binder's offset, rt2/offset.h).
+MLIB_INLINE f4 step_ulps(f4 a, f4 k) {
+  const __m128i steps = _mm_cvttps_epi32(k);
+  const __m128i negative = _mm_castps_si128(_mm_cmplt_ps(a, _mm_setzero_ps()));
+  const __m128i signed_steps = _mm_sub_epi32(_mm_xor_si128(steps, negative), negative);
+  return _mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(a), signed_steps));
+}
+
 }  // namespace mlib::simd
 
 #endif  // MLIB_SCALAR

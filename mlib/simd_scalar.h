@@ -270,4 +270,17 @@ MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int
   }
 }
 
+// See simd.h: bits plus trunc(k), minus where a < 0, wrapping.
+MLIB_INLINE f4 step_ulps(f4 a, f4 k) {
+  f4 r;
+  for (int i = 0; i < 4; ++i) {
+    const float f = k.v[i];
+    const std::int32_t steps =
+        f >= -2147483648.0f && f < 2147483648.0f ? static_cast<std::int32_t>(f) : INT32_MIN;
+    const auto u = static_cast<std::uint32_t>(steps);
+    r.v[i] = std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) + (a.v[i] < 0.0f ? 0u - u : u));
+  }
+  return r;
+}
+
 }  // namespace mlib::simd

@@ -14,10 +14,6 @@
 // millimetres to hundreds of kilometres get the same relative margin.
 #pragma once
 
-#include <bit>
-#include <cmath>
-#include <cstdint>
-
 #include "rt2/ray.h"
 
 namespace rt2 {
@@ -26,14 +22,13 @@ MLIB_INLINE vec4 offset_ray_origin(const vec4& p, const vec4& n, float scale = 1
   const float origin = scale / 32.0f;
   const float float_scale = scale / 65536.0f;
   constexpr float kIntScale = 256.0f;
-  vec4 out;
-  for (int i = 0; i < 3; ++i) {
-    const auto of = static_cast<std::int32_t>(kIntScale * n[i]);
-    const auto bits = std::bit_cast<std::int32_t>(p[i]);
-    const float moved = std::bit_cast<float>(bits + (p[i] < 0.0f ? -of : of));
-    out[i] = std::fabs(p[i]) < origin ? p[i] + float_scale * n[i] : moved;
-  }
-  return out;
+  // Per lane: p moved by (int)(256 n) floats, or by float_scale n where |p| < origin; w = 0.
+  namespace simd = mlib::simd;
+  const vec4 moved = simd::step_ulps(p.eval(), (kIntScale * n).eval());
+  const vec4 near = p + float_scale * n;
+  const simd::f4 is_near = simd::cmp_lt(simd::abs(p.eval()), simd::set1(origin));
+  const simd::f4 xyz = simd::cmp_eq(simd::setr(1.0f, 1.0f, 1.0f, 0.0f), simd::set1(1.0f));
+  return simd::bit_and(simd::blend(is_near, moved.eval(), near.eval()), xyz);
 }
 
 }  // namespace rt2

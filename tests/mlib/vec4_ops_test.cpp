@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -305,6 +307,42 @@ TEST(Vec4Functions, TruncateClampEqualsTheScalarCastClampedAndSendsNanAndHugeToL
     truncate_clamp(v * 1.0f, -8, 31, k);  // an expression, as callers pass
     for (int i = 0; i < 4; ++i)
       ASSERT_EQ(k[i], std::clamp(static_cast<std::int32_t>(v[i]), -8, 31)) << v[i];
+  }
+}
+
+// simd::step_ulps against the integer formula written lane by lane: bits + trunc(k), or
+// bits - trunc(k) where a < 0 (-0 counts as not negative), the cast's integer indefinite
+// (INT32_MIN) for NaN and k beyond int32, wrapping at the ends of the bit patterns.
+TEST(Simd, StepUlpsEqualsTheBitFormulaLaneByLaneAtSignsZerosNanAndWrapping) {
+  const auto oracle = [](float a, float k) {
+    const std::int32_t steps =
+        k >= -2147483648.0f && k < 2147483648.0f ? static_cast<std::int32_t>(k) : INT32_MIN;
+    const auto u = static_cast<std::uint32_t>(steps);
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a) + (a < 0.0f ? 0u - u : u));
+  };
+  const auto check = [&](float a0, float a1, float a2, float a3, float k0, float k1, float k2,
+                         float k3) {
+    const float a[4] = {a0, a1, a2, a3}, k[4] = {k0, k1, k2, k3};
+    float out[4];
+    simd::store(out, simd::step_ulps(simd::load(a), simd::load(k)));
+    for (int i = 0; i < 4; ++i)
+      ASSERT_TRUE(same_bits(out[i], oracle(a[i], k[i]))) << a[i] << " " << k[i] << " -> " << out[i];
+  };
+  // From memory the compiler cannot see into (folded, GCC would saturate the cast).
+  volatile float v[] = {std::nanf(""), 3.0e9f, -3.0e9f, INFINITY, -INFINITY, -0.0f, 0.0f,
+                        std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                        std::numeric_limits<float>::denorm_min(), 255.9f, -255.9f};
+  const int n = sizeof v / sizeof v[0];
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) check(v[i], v[j], -v[i], 1.0f, v[j], 7.5f, -v[j], v[i]);
+  EXPECT_EQ(std::bit_cast<std::uint32_t>(oracle(1.0f, 1.0f)), 0x3f800001u);  // one float up
+  EXPECT_EQ(oracle(-1.0f, 1.0f), std::nextafter(-1.0f, 0.0f));  // towards +inf, as 1's
+  std::mt19937 rng(35);
+  std::uniform_real_distribution<float> u(-300.0f, 300.0f);
+  std::uniform_real_distribution<float> e(-40.0f, 40.0f);
+  for (int r = 0; r < 10000; ++r) {
+    const auto x = [&] { return std::ldexp(u(rng), int(e(rng))); };
+    check(x(), x(), x(), x(), u(rng), u(rng), u(rng), u(rng));
   }
 }
 

@@ -7,10 +7,14 @@
 // refracted ray got stuck at its own surface ("lost refraction"). Counts are printed.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <random>
 
 #include "rt2/builtin_scene.h"
+#include "rt2/offset.h"
 #include "rt2/schedule.h"
 #include "tests/rt2/test_util.h"
 
@@ -82,6 +86,50 @@ Defects defects(float s, const vec4& shift, bool recenter) {
               s, shift[0], recenter ? "recentred" : "world coordinates", d.acne, d.lost,
               plain.rgb.size() / 3);
   return d;
+}
+
+// offset_ray_origin (one SIMD pass) against Wächter and Binder's formula coordinate by
+// coordinate, as rt2 computed it before: bit for bit, with w = 0, for points from denormal
+// to float max (either side of the 1/32 x scale switch), unit and odd normals (NaN and
+// infinite ones give the cast's integer indefinite), several scene scales.
+TEST(Offset, EqualsThePerCoordinateFormulaBitForBitFromTinyToFarAndAtNanNormals) {
+  const auto oracle = [](const vec4& p, const vec4& n, float scale) {
+    const float origin = scale / 32.0f, float_scale = scale / 65536.0f;
+    float out[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < 3; ++i) {
+      const float k = 256.0f * n[i];
+      const std::int32_t of =
+          k >= -2147483648.0f && k < 2147483648.0f ? static_cast<std::int32_t>(k) : INT32_MIN;
+      const auto bits = std::bit_cast<std::uint32_t>(p[i]);
+      const auto u = static_cast<std::uint32_t>(of);
+      const float moved = std::bit_cast<float>(bits + (p[i] < 0.0f ? 0u - u : u));
+      out[i] = std::fabs(p[i]) < origin ? p[i] + float_scale * n[i] : moved;
+    }
+    return vec4(out[0], out[1], out[2], out[3]);
+  };
+  const auto same = [](const vec4& a, const vec4& b) {
+    for (int i = 0; i < 4; ++i)
+      if (std::bit_cast<std::uint32_t>(a[i]) != std::bit_cast<std::uint32_t>(b[i])) return false;
+    return true;
+  };
+  std::mt19937 rng(36);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> e(-149, 127);
+  const float scales[] = {1e-3f, 1.0f, 30.0f, 1e5f};
+  for (int r = 0; r < 20000; ++r) {
+    const vec4 p(std::ldexp(u(rng), e(rng)), std::ldexp(u(rng), e(rng) / 4), u(rng) * 100.0f);
+    const vec4 n = normalize(vec4(u(rng), u(rng), u(rng)));
+    const float scale = scales[r % 4];
+    const vec4 got = offset_ray_origin(p, n, scale);
+    ASSERT_TRUE(same(got, oracle(p, n, scale))) << str(p) << " " << str(n) << " " << scale;
+  }
+  volatile float odd[] = {std::nanf(""), INFINITY, -INFINITY, 0.0f, -0.0f, 1e38f, -3.4e38f,
+                          1e-45f, 0.03125f, -0.03125f};
+  for (const float a : odd)
+    for (const float b : odd) {
+      const vec4 p(a, b, -a), n(b, a, 0.5f);
+      ASSERT_TRUE(same(offset_ray_origin(p, n, 1.0f), oracle(p, n, 1.0f))) << a << " " << b;
+    }
 }
 
 TEST(Acne, NoSelfShadowingAndNoLostRefractionFromMillimetresToHundredsOfKilometres) {
