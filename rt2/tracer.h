@@ -367,11 +367,23 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
     return;
   }
   // b.by_light: the rays to trace grouped by light, stable; b.light_begin: the ends of the
-  // groups. A counting sort over the lights when there are fewer lights than rays, else a
-  // sort of the rays (whose cost does not grow with the scene's light count).
+  // groups. A batch already grouped stays as it is; otherwise a counting sort over the
+  // lights when there are fewer lights than rays, else a sort of the rays (whose cost does
+  // not grow with the scene's light count).
   b.by_light.resize(m);
   b.light_begin.clear();
-  if (sc.lights.size() <= m) {
+  const auto light_of = [&b](std::size_t k) { return b.shadows[b.to_trace[k]].light; };
+  std::size_t grouped = m > 0 ? 1 : 0;  // how far the batch is already grouped
+  while (grouped < m && light_of(grouped - 1) <= light_of(grouped)) ++grouped;
+  if (grouped == m) {
+    // Lights never decrease along the batch (one light, say): the groups are its runs. (A
+    // count per ray would wait on the previous ray's store to the same counter.)
+    for (std::size_t k = 0; k < m; ++k) {
+      b.by_light[k] = b.to_trace[k];
+      if (k + 1 == m || light_of(k + 1) != light_of(k))
+        b.light_begin.push_back(static_cast<std::uint32_t>(k + 1));
+    }
+  } else if (sc.lights.size() <= m) {
     b.light_begin.clear();
     b.light_begin.resize(sc.lights.size() + 1);  // zeros
     for (const std::uint32_t i : b.to_trace) ++b.light_begin[b.shadows[i].light + 1];
