@@ -30,8 +30,17 @@ class Camera {
 
   // The primary ray through continuous pixel coordinates (px, py) of a width x height image.
   MLIB_INLINE Ray ray(float px, float py, int width, int height) const {
-    const float x = (2.0f * px / float(width) - 1.0f) * (float(width) / float(height)) * tan_half_;
-    const float y = (1.0f - 2.0f * py / float(height)) * tan_half_;
+    return ray_at(image_x(px, width, height), image_y(py, height));
+  }
+  // Its steps, for rays that share a column or a row (the render kernel's packets): x and y
+  // above, then the ray.
+  MLIB_INLINE float image_x(float px, int width, int height) const {
+    return (2.0f * px / float(width) - 1.0f) * (float(width) / float(height)) * tan_half_;
+  }
+  MLIB_INLINE float image_y(float py, int height) const {
+    return (1.0f - 2.0f * py / float(height)) * tan_half_;
+  }
+  MLIB_INLINE Ray ray_at(float x, float y) const {
     return Ray(position_, normalize(forward_ + right_ * x + up_ * y));
   }
 

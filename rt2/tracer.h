@@ -135,10 +135,14 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
     for (int gx = block.x0; gx < block.x1; gx += 4)
       for (int k = s0; k < s1; ++k) {
         const SubpixelOffset& o = offsets[k];
-        for (int y = gy; y < std::min(gy + 4, block.y1); ++y)
-          for (int x = gx; x < std::min(gx + 4, block.x1); ++x) {
+        const int nx = std::min(gx + 4, block.x1) - gx, ny = std::min(gy + 4, block.y1) - gy;
+        float image_x[4], image_y[4];  // per column and row of the packet (Camera::ray)
+        for (int j = 0; j < nx; ++j) image_x[j] = cam.image_x(float(gx + j) + o.x, st.width, st.height);
+        for (int j = 0; j < ny; ++j) image_y[j] = cam.image_y(float(gy + j) + o.y, st.height);
+        for (int y = gy; y < gy + ny; ++y)
+          for (int x = gx; x < gx + nx; ++x) {
             PathRay& pr = b.rays.emplace_back();
-            pr.ray = cam.ray(float(x) + o.x, float(y) + o.y, st.width, st.height);
+            pr.ray = cam.ray_at(image_x[x - gx], image_y[y - gy]);
             pr.rgb[0] = pr.rgb[1] = pr.rgb[2] = 1.0f;
             pr.sample = static_cast<std::uint32_t>(((y - block.y0) * bw + x - block.x0) * samples +
                                                    k - s0);
