@@ -70,10 +70,30 @@ MLIB_INLINE f4 blend(f4 mask, f4 if_false, f4 if_true) {
 }
 
 // --- dot products (SSE4.1 dpps) ------------------------------------------------------
-// All four lanes are multiplied and summed. `dp_lane0` is the thesis's form (mask 0xF1,
-// result in lane 0); `dp_bcast` (mask 0xFF) puts the sum in every lane, which saves the
-// shuffle when the result is used as a vector.
+// All four lanes are multiplied and summed as dpps does, (x x' + y y') + (z z' + w w'),
+// each step rounded. `dp_lane0` is the thesis's form (mask 0xF1, result in lane 0);
+// `dp_bcast` (mask 0xFF) puts the sum in every lane, which saves the shuffle when the
+// result is used as a vector.
+//
+// In the translation units built for AVX2 and AVX-512 (the render kernels, rt2/isa.h),
+// dp_bcast is one multiply and two shuffle-adds in that order instead: the same bits in
+// every lane (the last add is commutative), and dpps, four micro-ops with a long latency,
+// made the kernel's hit shading slower (headline frame +2.5 % without it). The baseline
+// keeps dpps, the thesis's form (tests/mlib/asm_test.cpp counts its instructions). Each
+// form lives in an inline namespace of its own, so the two definitions never meet.
+#if defined(__AVX2__)
+inline namespace shuffled_dot {
+MLIB_INLINE f4 dp_bcast(f4 a, f4 b) {
+  const __m128 m = _mm_mul_ps(a, b);
+  const __m128 pairs = _mm_add_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+  return _mm_add_ps(pairs, _mm_shuffle_ps(pairs, pairs, _MM_SHUFFLE(1, 0, 3, 2)));
+}
+}  // namespace shuffled_dot
+#else
+inline namespace dpps_dot {
 MLIB_INLINE f4 dp_bcast(f4 a, f4 b) { return _mm_dp_ps(a, b, 0xFF); }
+}  // namespace dpps_dot
+#endif
 MLIB_INLINE f4 dp_lane0(f4 a, f4 b) { return _mm_dp_ps(a, b, 0xF1); }
 
 // --- shuffles ------------------------------------------------------------------------

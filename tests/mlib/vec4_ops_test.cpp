@@ -14,6 +14,9 @@
 #include "tests/mlib/reference.h"
 
 namespace mlib::test {
+
+void dot_avx2(const float* a, const float* b, float* out, int n);  // dot_avx2_checks.cpp
+
 namespace {
 
 constexpr std::size_t kN = 2000;
@@ -343,6 +346,41 @@ TEST(Simd, StepUlpsEqualsTheBitFormulaLaneByLaneAtSignsZerosNanAndWrapping) {
   for (int r = 0; r < 10000; ++r) {
     const auto x = [&] { return std::ldexp(u(rng), int(e(rng))); };
     check(x(), x(), x(), x(), u(rng), u(rng), u(rng), u(rng));
+  }
+}
+
+// The wide units' dot product (simd.h: multiply, two shuffle-adds) against the baseline's
+// dpps: the same bits in all four lanes (NaN where dpps gives NaN), over every pairing of
+// signed zeros, denormals, overflowing and cancelling products, infinities and NaN, and
+// random vectors.
+TEST(Simd, WideUnitsDotProductEqualsDppsBitForBitInEveryLane) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
+  const float odd[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -1e-30f, 1e-40f, 3e38f, -3e38f,
+                       INFINITY, -INFINITY, std::nanf(""), 0.1f, 1e20f, -1e20f, 7.0f};
+  const int n_odd = sizeof odd / sizeof odd[0];
+  std::vector<float> a, b;
+  std::mt19937 rng(37);
+  std::uniform_int_distribution<int> pick(0, n_odd - 1);
+  for (int i = 0; i < 200000; ++i)
+    for (int l = 0; l < 4; ++l) {
+      a.push_back(odd[pick(rng)]);
+      b.push_back(odd[pick(rng)]);
+    }
+  for (const Ref& r : random_refs(20000, 38))
+    for (int l = 0; l < 4; ++l) a.push_back(r[l]);
+  for (const Ref& r : random_refs(20000, 39))
+    for (int l = 0; l < 4; ++l) b.push_back(r[l]);
+  const int n = int(a.size() / 4);
+  std::vector<float> wide(a.size());
+  dot_avx2(a.data(), b.data(), wide.data(), n);
+  for (int i = 0; i < n; ++i) {
+    float base[4];
+    simd::store(base, simd::dp_bcast(simd::load(&a[4 * i]), simd::load(&b[4 * i])));
+    for (int l = 0; l < 4; ++l) {
+      const float w = wide[4 * i + l];
+      ASSERT_TRUE(std::isnan(base[l]) ? std::isnan(w) : same_bits(w, base[l]))
+          << "vector " << i << " lane " << l << ": " << w << " vs dpps " << base[l];
+    }
   }
 }
 
