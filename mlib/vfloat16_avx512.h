@@ -41,6 +41,15 @@ MLIB_INLINE vfloat16 abs(vfloat16 a) {
                                                   _mm512_castps_si512(a.v)))};
 }
 MLIB_INLINE vfloat16 sqrt(vfloat16 a) { return {_mm512_sqrt_ps(a.v)}; }  // correctly rounded
+MLIB_INLINE vfloat16 floor(vfloat16 a) {
+  return {_mm512_roundscale_ps(a.v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)};
+}
+MLIB_INLINE vfloat16 step_ulps(vfloat16 a, vfloat16 k) {  // see mlib/simd.h
+  const __m512i steps = _mm512_cvttps_epi32(k.v);
+  const __mmask16 negative = _mm512_cmp_ps_mask(a.v, _mm512_setzero_ps(), _CMP_LT_OQ);
+  return {_mm512_castsi512_ps(_mm512_mask_sub_epi32(
+      _mm512_add_epi32(_mm512_castps_si512(a.v), steps), negative, _mm512_castps_si512(a.v), steps))};
+}
 MLIB_INLINE vfloat16 xor_sign(vfloat16 a, vfloat16 s) {
   const __m512i sign = _mm512_and_si512(_mm512_castps_si512(s.v), _mm512_set1_epi32(int(0x80000000u)));
   return {_mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.v), sign))};

@@ -54,6 +54,12 @@ MLIB_INLINE vfloat4 abs(vfloat4 a) {
   return detail::lanes([&](int i) { return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) & 0x7fffffffu); });
 }
 MLIB_INLINE vfloat4 sqrt(vfloat4 a) { return detail::lanes([&](int i) { return std::sqrt(a.v[i]); }); }
+MLIB_INLINE vfloat4 floor(vfloat4 a) { return detail::lanes([&](int i) { return std::floor(a.v[i]); }); }
+MLIB_INLINE vfloat4 step_ulps(vfloat4 a, vfloat4 k) {
+  const simd::f4 r = simd::step_ulps(simd::f4{{a.v[0], a.v[1], a.v[2], a.v[3]}},
+                                     simd::f4{{k.v[0], k.v[1], k.v[2], k.v[3]}});
+  return {{r.v[0], r.v[1], r.v[2], r.v[3]}};
+}
 MLIB_INLINE vfloat4 xor_sign(vfloat4 a, vfloat4 s) {
   return detail::lanes([&](int i) {
     return std::bit_cast<float>(std::bit_cast<std::uint32_t>(a.v[i]) ^

@@ -39,6 +39,10 @@ MLIB_INLINE vfloat4 min(vfloat4 a, vfloat4 b) { return {_mm_min_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat4 max(vfloat4 a, vfloat4 b) { return {_mm_max_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat4 abs(vfloat4 a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
 MLIB_INLINE vfloat4 sqrt(vfloat4 a) { return {_mm_sqrt_ps(a.v)}; }  // correctly rounded
+// Rounded toward -inf (exact; NaN stays NaN).
+MLIB_INLINE vfloat4 floor(vfloat4 a) { return {_mm_floor_ps(a.v)}; }
+// Each lane's bits plus trunc(k), or minus it where a < 0 (mlib/simd.h, step_ulps).
+MLIB_INLINE vfloat4 step_ulps(vfloat4 a, vfloat4 k) { return {simd::step_ulps(a.v, k.v)}; }
 // The sign bit of each lane of `a` flipped where `s` is negative (or -0): a * sign(s)
 // without a multiply.
 MLIB_INLINE vfloat4 xor_sign(vfloat4 a, vfloat4 s) {

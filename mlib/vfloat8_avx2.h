@@ -36,6 +36,13 @@ MLIB_INLINE vfloat8 min(vfloat8 a, vfloat8 b) { return {_mm256_min_ps(a.v, b.v)}
 MLIB_INLINE vfloat8 max(vfloat8 a, vfloat8 b) { return {_mm256_max_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat8 abs(vfloat8 a) { return {_mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.v)}; }
 MLIB_INLINE vfloat8 sqrt(vfloat8 a) { return {_mm256_sqrt_ps(a.v)}; }  // correctly rounded
+MLIB_INLINE vfloat8 floor(vfloat8 a) { return {_mm256_floor_ps(a.v)}; }
+MLIB_INLINE vfloat8 step_ulps(vfloat8 a, vfloat8 k) {  // see mlib/simd.h
+  const __m256i steps = _mm256_cvttps_epi32(k.v);
+  const __m256i negative = _mm256_castps_si256(_mm256_cmp_ps(a.v, _mm256_setzero_ps(), _CMP_LT_OQ));
+  const __m256i signed_steps = _mm256_sub_epi32(_mm256_xor_si256(steps, negative), negative);
+  return {_mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(a.v), signed_steps))};
+}
 MLIB_INLINE vfloat8 xor_sign(vfloat8 a, vfloat8 s) {
   return {_mm256_xor_ps(a.v, _mm256_and_ps(s.v, _mm256_set1_ps(-0.0f)))};
 }

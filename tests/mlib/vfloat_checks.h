@@ -96,6 +96,31 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
   expect(mlib::bits(andnot(va < vb, V::broadcast(0.0f) <= V::broadcast(0.0f))) ==
              ((1u << N) - 1) - mlib::bits(va < vb),
          "andnot");
+  // floor rounds toward -inf as std::floor, keeping -0, NaN and infinities; step_ulps adds
+  // trunc(k) to the bits (subtracts it below 0; NaN and huge k give INT32_MIN), wrapping.
+  const float odd[] = {-0.0f, 0.0f, -1.5f, 2.5f, 1e-40f, -3e38f, 8388607.5f, -8388609.0f,
+                       inf, -inf, nan, 255.9f, -255.9f, 3e9f, 0.75f, -1e-30f};
+  constexpr int kOdd = sizeof odd / sizeof odd[0];
+  alignas(64) float f[N], k[N];
+  for (int r = 0; r < kOdd * kOdd; r += N) {
+    for (int i = 0; i < N; ++i) {
+      f[i] = odd[(r + i) % kOdd];
+      k[i] = odd[(r + i) / kOdd % kOdd];
+    }
+    floor(V::load(f)).store(out);
+    for (int i = 0; i < N; ++i)
+      expect(std::isnan(f[i]) ? std::isnan(out[i])
+                              : std::bit_cast<std::uint32_t>(out[i]) == std::bit_cast<std::uint32_t>(std::floor(f[i])),
+             "floor", i);
+    step_ulps(V::load(f), V::load(k)).store(out);
+    for (int i = 0; i < N; ++i) {
+      const std::int32_t steps = k[i] >= -2147483648.0f && k[i] < 2147483648.0f
+                                     ? static_cast<std::int32_t>(k[i]) : INT32_MIN;
+      const auto u = static_cast<std::uint32_t>(steps);
+      const std::uint32_t want = std::bit_cast<std::uint32_t>(f[i]) + (f[i] < 0.0f ? 0u - u : u);
+      expect(std::bit_cast<std::uint32_t>(out[i]) == want, "step_ulps", i);
+    }
+  }
   return failures;
 }
 
