@@ -69,13 +69,12 @@ struct Accel {
   // the shading data (tris, materials, normals).
   std::size_t bvh_bytes() const;
 
+  // Branch-free: a batch's hits mix the kinds unpredictably (a plane's tag, or any other,
+  // reads the planes').
   std::uint32_t material_of(PrimRef p) const {
-    const std::uint32_t i = prim_index(p);
-    switch (prim_tag(p)) {
-      case kTriangleTag: return tri_materials[i];
-      case kSphereTag: return sphere_materials[i];
-      default: return plane_materials[i];
-    }
+    const std::uint32_t* const of_kind[4] = {tri_materials.data(), sphere_materials.data(),
+                                             plane_materials.data(), plane_materials.data()};
+    return of_kind[prim_tag(p) >> 30][prim_index(p)];
   }
 };
 
