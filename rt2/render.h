@@ -59,6 +59,10 @@ struct RenderSettings {
   // BVH together where its rays allow (rt2/bvh/packet_traverse.h); false: every ray alone.
   // The image does not depend on it.
   bool packets = true;
+  // Phong hits are shaded kWidestLanes at a time in one SIMD pass (rt2/phong_lanes.h) when
+  // every hit considers every light and there are at most 8; false: one hit at a time. The
+  // image does not depend on it.
+  bool shading_lanes = true;
   // Lights: which ones each shading point considers (tiled and clustered culling use the
   // lists for primary hits and the light tree for the others), how the lists are filled,
   // and how many depth slices (1 ... 256) a block has for clustered culling: exponentially
@@ -96,8 +100,10 @@ struct View {
 struct LightCounts {
   std::uint64_t points = 0, considered = 0, in_range = 0, lists = 0, list_entries = 0;
   std::uint64_t unoccluded = 0;  // shadow rays proven to pass whole, not traced
+  std::uint64_t in_lanes = 0;    // shading points shaded in SIMD lanes (phong_lanes.h)
   LightCounts& operator+=(const LightCounts& o) {
     points += o.points;
+    in_lanes += o.in_lanes;
     considered += o.considered;
     in_range += o.in_range;
     unoccluded += o.unoccluded;

@@ -45,6 +45,7 @@
 #include "rt2/offset.h"
 #include "rt2/optics.h"
 #include "rt2/pbr_shade.h"
+#include "rt2/phong_lanes.h"
 #include "rt2/query.h"
 #include "rt2/render.h"
 
@@ -312,28 +313,54 @@ MLIB_INLINE void shade_hit(const CompiledScene& sc, const RenderSettings& st, in
 // miss takes the background. With lists, the surface points are b.points (the first step
 // made them, the second used them); without, every hit considers every light and its
 // surface point is made here (the first two steps are skipped: one pass over the hits).
+// kHitLanes rays at a time: without lists and with at most kMaxLaneLights lights, the
+// Phong hits among them are shaded in one SIMD pass (phong_lanes.h; RenderSettings::
+// shading_lanes), the others one by one; each ray's results are then added in batch
+// order, the same bits either way.
 inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, RayCounts& counts) {
   const CompiledScene& sc = r.scene();
   const RenderSettings& st = r.settings();
   // the angle a pixel spans at the image centre: a texture lookup's footprint per distance
   const float pixel_angle =
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
-  for (std::size_t i = 0; i < b.rays.size(); ++i) {
-    const PathRay& pr = b.rays[i];
-    if (!b.hits[i].found()) {
-      b.colors[pr.sample] += pr.weight() * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
-                                                             : sc.background);
-      continue;
+  const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights;
+  PhongLanes lanes{};  // zero: lanes a pass does not fill hold finite values
+  const std::size_t n = b.rays.size();
+  for (std::size_t first = 0; first < n; first += kHitLanes) {
+    const std::size_t end = std::min(first + kHitLanes, n);
+    unsigned shaded = 0;  // the lanes shaded in SIMD
+    if (in_lanes) {
+      lanes.clear_kinds();
+      for (std::size_t i = first; i < end; ++i) {
+        if (!b.hits[i].found()) continue;
+        const std::uint32_t material = sc.accel.material_of(b.hits[i].prim);
+        if (!lane_shadable(sc.materials[material])) continue;
+        gather_lane(sc, b, i, material, int(i - first), lanes);
+        shaded |= 1u << (i - first);
+      }
+      if (shaded) shade_lanes(sc, st, depth, shaded, lanes);
     }
-    if (lists) {
-      const std::uint32_t k = b.list_of[i];
-      shade_hit(sc, st, depth, pr, b.points[i],
-                LightList{b.light_items.data() + b.list_begin[k],
-                          b.list_begin[k + 1] - b.list_begin[k], b.list_sees.data() + b.list_begin[k]},
-                pixel_angle, b, counts);
-    } else {
-      shade_hit(sc, st, depth, pr, surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale),
-                LightList{nullptr, sc.lights.size()}, pixel_angle, b, counts);
+    for (std::size_t i = first; i < end; ++i) {
+      if (shaded >> (i - first) & 1) {
+        emit_lane(sc, lanes, int(i - first), b, counts);
+        continue;
+      }
+      const PathRay& pr = b.rays[i];
+      if (!b.hits[i].found()) {
+        b.colors[pr.sample] += pr.weight() * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
+                                                               : sc.background);
+        continue;
+      }
+      if (lists) {
+        const std::uint32_t k = b.list_of[i];
+        shade_hit(sc, st, depth, pr, b.points[i],
+                  LightList{b.light_items.data() + b.list_begin[k],
+                            b.list_begin[k + 1] - b.list_begin[k], b.list_sees.data() + b.list_begin[k]},
+                  pixel_angle, b, counts);
+      } else {
+        shade_hit(sc, st, depth, pr, surface_at(sc.accel, pr.ray, b.hits[i], sc.offset_scale),
+                  LightList{nullptr, sc.lights.size()}, pixel_angle, b, counts);
+      }
     }
   }
 }

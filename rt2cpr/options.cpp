@@ -158,7 +158,7 @@ std::optional<Options> parse_options(int argc, char** argv) {
   long long leaf = o.bvh.max_leaf_size;
   float min_weight = o.render.min_weight;
   std::string pattern = "grid", split = "sah", backend = "omp", triangle_test = "fast",
-              isa = rt2::isa_name(o.isa), packets = "on", positional_scene,
+              isa = rt2::isa_name(o.isa), packets = "on", shading_lanes = "on", positional_scene,
               light_culling = "clustered", light_lists = "bvh", shadows = "on",
               tone_curve = "none";
   int light_slices = o.render.light_slices;
@@ -209,6 +209,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
                  "fast (the thesis's) | watertight (Woop et al. 2013)");
   app.add_option("--packets", packets, "on: coherent rays walk the BVH 16 at a time | off: "
                                        "one by one (the image is the same)");
+  app.add_option("--shading-lanes", shading_lanes,
+                 "on: Phong hits are shaded 4, 8 or 16 at a time (SIMD) | off: one by one (the "
+                 "image is the same)");
   app.add_option("--frames", o.frames, "frames to render (timing: median, min, max)");
   app.add_option("--passes", passes, "render each pixel's samples in this many passes over the "
                                      "image, 1 ... subpixels (progressive)");
@@ -301,6 +304,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
   if (packets != "on" && packets != "off")
     throw rt2::Error("unknown --packets '" + packets + "' (expected on or off)");
   o.render.packets = packets == "on";
+  if (shading_lanes != "on" && shading_lanes != "off")
+    throw rt2::Error("unknown --shading-lanes '" + shading_lanes + "' (expected on or off)");
+  o.render.shading_lanes = shading_lanes == "on";
   if (triangle_test != "fast" && triangle_test != "watertight")
     throw rt2::Error("unknown triangle test '" + triangle_test + "' (expected fast or watertight)");
   o.render.watertight = triangle_test == "watertight";

@@ -109,6 +109,7 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
       {"passes", st.passes},
       {"block", st.block},
       {"packets", st.packets},
+      {"shading_lanes", st.shading_lanes},
       {"light_culling", light_culling_name(st.light_culling)},
       {"light_lists", st.light_lists == rt2::LightLists::bvh ? "bvh" : "brute-force"},
       {"light_slices", st.light_slices},
@@ -235,6 +236,9 @@ void Report::print_summary() const {
               in_packets(rays_.shadow_walk, rays_.shadow),
               in_packets(rays_.secondary_walk, rays_.reflection + rays_.refraction));
   const rt2::LightCounts& l = rays_.lights;
+  if (l.points > 0)
+    std::printf("shading points shaded in SIMD lanes: %.1f %%\n",
+                100.0 * double(l.in_lanes) / double(l.points));
   if (l.points > 0 && j["lights"].get<std::size_t>() > 0) {
     std::printf("lights per shading point: %.2f considered, %.2f in range (culling %s",
                 double(l.considered) / double(l.points), double(l.in_range) / double(l.points),
@@ -323,7 +327,8 @@ nlohmann::json Report::json() const {
                        {"in_range", l.in_range},
                        {"lists", l.lists},
                        {"list_entries", l.list_entries},
-                       {"unoccluded", l.unoccluded}};
+                       {"unoccluded", l.unoccluded},
+                       {"in_simd_lanes", l.in_lanes}};
   const auto stage = [&](std::uint64_t rt2::StageTimes::*field) {
     return median_of(stages_, [&](const rt2::StageTimes& s) { return double(s.*field) * 1e-6; });
   };

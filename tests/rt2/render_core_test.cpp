@@ -84,6 +84,111 @@ TEST(RenderCore, PacketsOnOrOffGiveIdenticalImagesOnEveryIsaAndTest) {
       }
 }
 
+// A scene at the numbers' edges for the shading lanes: a quad 1e9 away whose normal's
+// square overflows and one 1e-12 away whose square underflows (normalize's rescaling path),
+// a checker plane whose cells run past 2^24 and 2^63 towards the horizon, a mirror sphere,
+// a textured-free glass cube (refraction: the one-hit step, in the same passes), a light
+// with a range (its window), one beyond float's reach (never in range) and an ordinary one.
+Scene lanes_edge_scene() {
+  Scene s;
+  s.camera = Camera::look_at(vec4(0, 0, 0), vec4(0.05f, -0.1f, -1), vec4(0, 1, 0), 60.0f);
+  s.ambient = vec4(0.1f, 0.1f, 0.1f);
+  s.background = vec4(0.2f, 0.3f, 0.4f);
+  Material far_wall;
+  far_wall.diffuse = vec4(0.6f, 0.5f, 0.4f);
+  Material tiny;
+  tiny.specular = vec4(0.7f, 0.7f, 0.7f);
+  tiny.shininess = 33.0f;
+  tiny.reflectivity = 0.5f;
+  Material mirror;
+  mirror.diffuse = vec4(0.1f, 0.1f, 0.1f);
+  mirror.specular = vec4(0.9f, 0.9f, 0.9f);
+  mirror.reflectivity = 0.8f;
+  Material checker;
+  checker.diffuse2 = vec4(0.1f, 0.2f, 0.9f);
+  checker.checker_scale = 1e-4f;
+  checker.specular = vec4(0.3f, 0.0f, 0.0f);
+  checker.reflectivity = 0.3f;
+  Material glass;
+  glass.transparency = 0.7f;
+  glass.ior = 1.4f;
+  glass.reflectivity = 0.1f;
+  const std::uint32_t wall = s.add_material("wall", far_wall), small = s.add_material("tiny", tiny),
+                      mir = s.add_material("mirror", mirror), chk = s.add_material("checker", checker),
+                      gl = s.add_material("glass", glass);
+  const auto quad = [&](float z, float lo_x, float hi_x, float lo_y, float hi_y, std::uint32_t m) {
+    Mesh q;
+    q.name = "quad";
+    q.positions = {vec4(lo_x, lo_y, z), vec4(hi_x, lo_y, z), vec4(hi_x, hi_y, z), vec4(lo_x, hi_y, z)};
+    q.faces = {{0, 1, 2}, {0, 2, 3}};
+    q.face_materials = {m, m};
+    s.meshes.push_back(q);
+  };
+  quad(-1e9f, -5e9f, 5e9f, -5e9f, 5e9f, wall);       // |n|^2 = 1e40 overflows
+  quad(-1e-12f, 0.0f, 1e-12f, -1e-12f, 0.0f, small);  // |n|^2 = 1e-48 underflows
+  s.meshes.push_back(make_cube(vec4(-0.6f, -0.5f, -3.0f), 0.3f, gl));
+  s.meshes.push_back(make_icosphere(vec4(0.7f, -0.4f, -2.5f), 0.4f, 2, mir));
+  s.spheres.push_back(Sphere{vec4(0.2f, 0.1f, -2.2f), 0.35f});
+  s.sphere_materials.push_back(mir);
+  s.planes.push_back(Plane{vec4(0, 1, 0), 1.0f});
+  s.plane_materials.push_back(chk);
+  s.lights.push_back(Light{vec4(2, 5, 1), vec4(1, 1, 1), 0.8f});
+  s.lights.push_back(Light{vec4(-1, 0.5f, -2), vec4(1, 0.5f, 0.2f), 1.0f, 4.0f});
+  s.lights.push_back(Light{vec4(1e20f, 1e20f, 1e20f), vec4(1, 1, 1), 1.0f});
+  return s;
+}
+
+// The shading lanes (RenderSettings::shading_lanes) compute what the one-hit step
+// computes: the image is the same bits with them on or off, on every instruction set, with
+// both triangle tests, supersampling and deep mirrors; with lights up to the lanes' limit
+// (and beyond it, where every hit takes the one-hit step); on glass, whose hits take the
+// one-hit step between lanes of the same pass; and at the numbers' edges above.
+TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) {
+  Scene glass = test::glass_scene();
+  Material g = glass.materials[glass.sphere_materials.back()];
+  g.transparency = 0.6f;
+  glass.meshes.push_back(make_icosphere(vec4(0.5f, 0.35f, 0.3f), 0.35f, 3,
+                                        glass.add_material("mesh glass", g)));
+  struct Case {
+    const char* name;
+    Scene scene;
+    std::size_t lights;  // 0: the scene's own
+    bool lanes_expected;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"glass", glass, 0, true});
+  cases.push_back({"edges", lanes_edge_scene(), 0, true});
+  for (std::size_t lights : {1u, 8u, 9u}) {
+    Scene s = make_default_scene();
+    set_light_count(s, lights);
+    cases.push_back({"built-in", s, lights, lights <= 8});
+  }
+  for (const Case& c : cases)
+    for (Isa isa : test::runnable_isas())
+      for (bool watertight : {false, true}) {
+        RenderSettings st = settings(2, 1, 7);
+        st.depth = 10;
+        st.watertight = watertight;
+        st.light_culling = LightCulling::none;  // every hit considers every light
+        st.shading_lanes = false;
+        FrameResult one, lanes;
+        const Image ref = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &one);
+        st.shading_lanes = true;
+        const Image img = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
+        const std::string what = std::string(c.name) + " lights " + std::to_string(c.lights) + " " +
+                                 isa_name(isa) + " watertight " + std::to_string(watertight);
+        EXPECT_TRUE(identical(ref, img)) << what;
+        EXPECT_EQ(one.rays.total(), lanes.rays.total()) << what;
+        EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
+        // The property is the lanes': most hits must take them where they can.
+        EXPECT_EQ(one.rays.lights.in_lanes, 0u) << what;
+        if (c.lanes_expected)
+          EXPECT_GT(lanes.rays.lights.in_lanes, lanes.rays.lights.points / 2) << what;
+        else
+          EXPECT_EQ(lanes.rays.lights.in_lanes, 0u) << what;
+      }
+}
+
 TEST(RenderCore, EightPassesOfOneSampleEqualOnePassOfEight) {
   for (Pattern pattern : {Pattern::grid, Pattern::circle}) {
     RenderSettings one = settings(8, 1), eight = settings(8, 8);

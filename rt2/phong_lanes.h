@@ -1,0 +1,412 @@
+// rt2/phong_lanes.h — stage 3 of the render kernel (tracer.h) for Phong hits, kHitLanes
+// hits in one SIMD pass: their surface points (surface_at), the ambient term, each light's
+// term (shade: the shadow rays) and the reflected rays (spawn), structure of arrays.
+//
+// Every lane computes what the one-hit code computes, bit for bit: the same operations in
+// the same order, vec4's dot product as (x x' + y y') + (z z' + w w') with the w lanes the
+// one-hit code carries (all +0, but a flipped normal's -0, which decides the sign of a zero
+// dot product in reflect), normalize's rescaling path taken per lane by the one-hit
+// normalize, the checker's cell parity from exact floors (a cell index of 2^24 or more is
+// even, as every float that large is; NaN and beyond int64 give the cast's even integer
+// indefinite), std::pow per lane for highlights. The caller emits each lane's results in
+// batch order (emit_lane), so the batch's shadow and secondary rays come out in the order
+// the one-hit step makes them, and images are the same bits.
+//
+// Which hits: a Phong material without a texture or transparency (textures and refraction
+// keep the one-hit step), when every hit considers every light (no light lists) and there
+// are at most kMaxLaneLights lights (the results of each lane's lights are kept until they
+// are emitted in order).
+//
+// Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
+#pragma once
+
+#include <bit>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+
+#include "mlib/vfloat.h"
+#include "rt2/batches.h"
+#include "rt2/compiled_scene.h"
+#include "rt2/render.h"
+
+namespace rt2::RT2_ISA {
+namespace detail {
+
+inline constexpr int kHitLanes = mlib::kWidestLanes;
+inline constexpr std::size_t kMaxLaneLights = 8;
+
+// Whether a hit on material m takes the lanes (see above; the scene-wide conditions are
+// the caller's).
+inline bool lane_shadable(const Material& m) {
+  return m.model == Shading::phong && m.base_color_texture == kNoTexture &&
+         !(m.transparency > 0.0f);
+}
+
+// One pass's inputs (gathered lane by lane) and results.
+struct PhongLanes {
+  using F = float[kHitLanes];
+  using F3 = float[3][kHitLanes];
+  // the ray and its hit
+  alignas(64) F3 org, dir, weight;
+  alignas(64) F t, u, v;
+  // per primitive kind (zero in the other kinds' lanes)
+  alignas(64) F3 v0, v1, v2, tri_n;   // triangles: vertices, unnormalised normal
+  alignas(64) F3 n0, n1, n2;          // triangles' vertex normals (without: unused)
+  alignas(64) F3 center;              // spheres
+  alignas(64) F radius;
+  alignas(64) F3 plane_n;             // planes
+  alignas(64) F plane_d;
+  unsigned triangles = 0, spheres = 0, planes = 0;  // lanes of each kind
+  // the material's index (as a float: exact below 2^24 materials; the lanes of one
+  // material take its values together)
+  alignas(64) F material;
+  std::uint32_t material_index[kHitLanes];
+  std::uint32_t sample[kHitLanes];
+  // results
+  alignas(64) F3 above, ambient_term, reflect_dir, reflect_weight;
+  alignas(64) float reflect_dir_w[kHitLanes];
+  unsigned reflects = 0;  // lanes that spawn a reflected ray
+  struct LightLanes {
+    alignas(64) F3 dir, term;
+    alignas(64) F dir_w, distance;
+    unsigned lit = 0, in_range = 0;
+  };
+  LightLanes light[kMaxLaneLights];
+
+  // Before a pass's lanes are gathered.
+  void clear_kinds() { triangles = spheres = planes = 0; }
+};
+
+// Lane l of p: hit i of the batch, on material `material` (which lane_shadable accepts).
+inline void gather_lane(const CompiledScene& sc, const Batches& b, std::size_t i,
+                        std::uint32_t material, int l, PhongLanes& p) {
+  const PathRay& pr = b.rays[i];
+  const Hit& h = b.hits[i];
+  const Accel& acc = sc.accel;
+  for (int c = 0; c < 3; ++c) {
+    p.org[c][l] = pr.ray.org[c];
+    p.dir[c][l] = pr.ray.dir[c];
+    p.weight[c][l] = pr.rgb[c];
+  }
+  p.t[l] = h.t;
+  p.u[l] = h.u;
+  p.v[l] = h.v;
+  p.sample[l] = pr.sample;
+  const std::uint32_t k = prim_index(h.prim);
+  const unsigned bit = 1u << l;
+  if (prim_tag(h.prim) == kTriangleTag) {
+    const Triangle& tri = acc.tris[k];
+    for (int c = 0; c < 3; ++c) {
+      p.v0[c][l] = tri.v0[c];
+      p.v1[c][l] = tri.v1[c];
+      p.v2[c][l] = tri.v2[c];
+      p.tri_n[c][l] = tri.n[c];
+    }
+    if (!acc.tri_normals.empty()) {
+      const auto& n = acc.tri_normals[k];
+      for (int c = 0; c < 3; ++c) {
+        p.n0[c][l] = n[0][c];
+        p.n1[c][l] = n[1][c];
+        p.n2[c][l] = n[2][c];
+      }
+    }
+    p.triangles |= bit;
+  } else if (prim_tag(h.prim) == kSphereTag) {
+    const Sphere& s = acc.spheres[k];
+    for (int c = 0; c < 3; ++c) p.center[c][l] = s.center[c];
+    p.radius[l] = s.radius;
+    p.spheres |= bit;
+  } else {
+    const Plane& pl = acc.planes[k];
+    for (int c = 0; c < 3; ++c) p.plane_n[c][l] = pl.n[c];
+    p.plane_d[l] = pl.d;
+    p.planes |= bit;
+  }
+  p.material[l] = float(material);
+  p.material_index[l] = material;
+}
+
+namespace lanes {
+
+using V = mlib::vfloat<kHitLanes>;
+using M = V::bool_type;
+
+MLIB_INLINE void load3(const float (&a)[3][kHitLanes], V* v) {
+  for (int c = 0; c < 3; ++c) v[c] = V::load(a[c]);
+}
+MLIB_INLINE void store3(const V* v, float (&a)[3][kHitLanes]) {
+  for (int c = 0; c < 3; ++c) v[c].store(a[c]);
+}
+// vec4's dot of (a, w_a) and (b, w_b) given w_a w_b: (a_x b_x + a_y b_y) + (a_z b_z + w).
+MLIB_INLINE V dot(const V* a, const V* b, V w) { return (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + w); }
+MLIB_INLINE V negate(V x) { return xor_sign(x, V::broadcast(-0.0f)); }
+MLIB_INLINE void select3(M m, const V* a, const V* b, V* out) {
+  for (int c = 0; c < 3; ++c) out[c] = select(m, a[c], b[c]);
+}
+// Lanes of `lanes` set.
+MLIB_INLINE M lanes_of(unsigned lanes) {
+  alignas(64) float f[kHitLanes];
+  for (int l = 0; l < kHitLanes; ++l) f[l] = lanes >> l & 1 ? 1.0f : 0.0f;
+  return V::load(f) > V::broadcast(0.0f);
+}
+
+// a / |a| as vec4's normalize of (a, +0): divided by sqrt(a·a) where that is a normal
+// float, and through normalize itself (its rescaling path) in the other lanes of `lanes`.
+MLIB_INLINE void normalize(V* a, unsigned lanes) {
+  const V len2 = dot(a, a, V::broadcast(0.0f));
+  const unsigned slow =
+      lanes & ~mlib::bits((len2 >= V::broadcast(FLT_MIN)) & (len2 <= V::broadcast(FLT_MAX)));
+  alignas(64) float in[3][kHitLanes];
+  if (slow) store3(a, in);
+  const V len = sqrt(len2);
+  for (int c = 0; c < 3; ++c) a[c] = a[c] / len;
+  if (!slow) return;
+  alignas(64) float out[3][kHitLanes];
+  store3(a, out);
+  for (unsigned m = slow; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    const vec4 n = mlib::normalize(vec4(in[0][l], in[1][l], in[2][l]));
+    for (int c = 0; c < 3; ++c) out[c][l] = n[c];
+  }
+  load3(out, a);
+}
+
+// The checker's cell parity of x (floor(x) as a 64-bit integer, & 1): 1 or 0.
+MLIB_INLINE V cell_parity(V x) {
+  const V f = floor(x);
+  const V odd = f - V::broadcast(2.0f) * floor(V::broadcast(0.5f) * f);
+  return select(abs(f) < V::broadcast(16777216.0f), odd, V::broadcast(0.0f));
+}
+
+}  // namespace lanes
+
+// The pass over the lanes of `active` (each filled by gather_lane): p's results, for a
+// scene whose every hit considers all of its sc.lights.size() <= kMaxLaneLights lights.
+inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int depth,
+                        unsigned active, PhongLanes& p) {
+  using lanes::V;
+  using lanes::M;
+  const V zero = V::broadcast(0.0f);
+  V org[3], dir[3], weight[3];
+  lanes::load3(p.org, org);
+  lanes::load3(p.dir, dir);
+  lanes::load3(p.weight, weight);
+  const V t = V::load(p.t), u = V::load(p.u), v = V::load(p.v);
+  // The surface point: p, ng, ns (surface_at) per kind, then chosen per lane.
+  V pos[3], ng[3], ns[3];
+  for (int c = 0; c < 3; ++c) pos[c] = ng[c] = ns[c] = zero;
+  V q[3];  // ray.at(t), for spheres and planes
+  for (int c = 0; c < 3; ++c) q[c] = org[c] + dir[c] * t;
+  if (p.planes) {
+    const M is = lanes::lanes_of(p.planes);
+    V n[3];
+    lanes::load3(p.plane_n, n);
+    const V s = lanes::dot(q, n, zero) + V::load(p.plane_d);
+    V x[3];
+    for (int c = 0; c < 3; ++c) x[c] = q[c] - n[c] * s;
+    lanes::select3(is, x, pos, pos);
+    lanes::select3(is, n, ng, ng);
+    lanes::select3(is, n, ns, ns);
+  }
+  if (p.spheres) {
+    const M is = lanes::lanes_of(p.spheres);
+    V c3[3], n[3], x[3];
+    lanes::load3(p.center, c3);
+    for (int c = 0; c < 3; ++c) n[c] = q[c] - c3[c];
+    lanes::normalize(n, p.spheres);
+    const V r = V::load(p.radius);
+    for (int c = 0; c < 3; ++c) x[c] = c3[c] + n[c] * r;
+    lanes::select3(is, x, pos, pos);
+    lanes::select3(is, n, ng, ng);
+    lanes::select3(is, n, ns, ns);
+  }
+  if (p.triangles) {
+    const M is = lanes::lanes_of(p.triangles);
+    V a[3], b[3], c3[3], n[3], x[3];
+    lanes::load3(p.v0, a);
+    lanes::load3(p.v1, b);
+    lanes::load3(p.v2, c3);
+    for (int c = 0; c < 3; ++c) x[c] = (a[c] + u * (b[c] - a[c])) + v * (c3[c] - a[c]);
+    lanes::load3(p.tri_n, n);
+    lanes::normalize(n, p.triangles);
+    lanes::select3(is, x, pos, pos);
+    lanes::select3(is, n, ng, ng);
+    if (sc.accel.tri_normals.empty()) {
+      lanes::select3(is, n, ns, ns);
+    } else {
+      V m0[3], m1[3], m2[3], s[3];
+      lanes::load3(p.n0, m0);
+      lanes::load3(p.n1, m1);
+      lanes::load3(p.n2, m2);
+      const V w = (V::broadcast(1.0f) - u) - v;
+      for (int c = 0; c < 3; ++c) s[c] = (w * m0[c] + u * m1[c]) + v * m2[c];
+      lanes::normalize(s, p.triangles);
+      lanes::select3(is, s, ns, ns);
+    }
+  }
+  // Facing the ray: both normals flipped where it hit the back (their w becomes -0), and an
+  // interpolated normal that faces away replaced by the geometric one.
+  const M entering = lanes::dot(dir, ng, zero) < zero;
+  for (int c = 0; c < 3; ++c) {
+    ng[c] = select(entering, ng[c], lanes::negate(ng[c]));
+    ns[c] = select(entering, ns[c], lanes::negate(ns[c]));
+  }
+  const V ns_w_dir_w = select(entering, zero, V::broadcast(-0.0f));  // ns.w x dir.w (+0)
+  const M facing = lanes::dot(ns, dir, ns_w_dir_w) < zero;
+  for (int c = 0; c < 3; ++c) ns[c] = select(facing, ns[c], ng[c]);
+  // Where secondary rays start (offset.h), per lane.
+  V above[3];
+  {
+    const float scale = sc.offset_scale;
+    const V origin = V::broadcast(scale / 32.0f), float_scale = V::broadcast(scale / 65536.0f);
+    for (int c = 0; c < 3; ++c) {
+      const V moved = step_ulps(pos[c], V::broadcast(256.0f) * ng[c]);
+      above[c] = select(abs(pos[c]) < origin, pos[c] + float_scale * ng[c], moved);
+    }
+  }
+  lanes::store3(above, p.above);
+  // The materials' values, material by material (a pass's hits share a few).
+  V ka[3], kd[3], ks[3], kr = zero;
+  for (int c = 0; c < 3; ++c) ka[c] = kd[c] = ks[c] = zero;
+  {
+    const V material = V::load(p.material);
+    for (unsigned left = active; left;) {
+      const std::uint32_t mi = p.material_index[std::countr_zero(left)];
+      const Material& m = sc.materials[mi];
+      const M is = material == V::broadcast(float(mi));
+      left &= ~mlib::bits(is);
+      for (int c = 0; c < 3; ++c) {
+        ka[c] = select(is, V::broadcast(m.ambient[c]), ka[c]);
+        kd[c] = select(is, V::broadcast(m.diffuse[c]), kd[c]);
+        ks[c] = select(is, V::broadcast(m.specular[c]), ks[c]);
+      }
+      kr = select(is, V::broadcast(m.reflectivity), kr);
+      if (m.checker_scale > 0.0f) {
+        // Kd: the checker's colour in its odd cells of the world-space point
+        const V inv = V::broadcast(1.0f / m.checker_scale);
+        V parity = zero;
+        for (int c = 0; c < 3; ++c)
+          parity = parity + lanes::cell_parity((pos[c] + V::broadcast(sc.origin[c])) * inv);
+        const M odd = is & (lanes::cell_parity(parity) > zero);
+        for (int c = 0; c < 3; ++c) kd[c] = select(odd, V::broadcast(m.diffuse2[c]), kd[c]);
+      }
+    }
+  }
+  // Ka I_amb, weighted
+  {
+    V out[3];
+    for (int c = 0; c < 3; ++c) out[c] = weight[c] * (ka[c] * V::broadcast(sc.ambient[c]));
+    lanes::store3(out, p.ambient_term);
+  }
+  // Each light's term: the shadow ray's direction, length and weight (shade).
+  const std::size_t light_count = sc.lights.size();
+  if (light_count > 0) {
+    const M shiny_material = (ks[0] > zero) | (ks[1] > zero) | (ks[2] > zero);
+    V view[3];
+    for (int c = 0; c < 3; ++c) view[c] = lanes::negate(dir[c]);
+    for (std::size_t k = 0; k < light_count; ++k) {
+      const Light& light = sc.lights[k];
+      PhongLanes::LightLanes& out = p.light[k];
+      V to[3], l[3];
+      for (int c = 0; c < 3; ++c) to[c] = V::broadcast(light.position[c]) - above[c];
+      const V dist = sqrt(lanes::dot(to, to, zero));
+      const V range = V::broadcast(light.range);
+      const M in_range = dist < range;
+      out.in_range = mlib::bits(in_range) & active;
+      for (int c = 0; c < 3; ++c) l[c] = to[c] / dist;
+      const V l_w = zero / dist;  // L's w: NaN where d is 0 or NaN
+      const V l_w_n_w = l_w * zero;
+      const V n_dot_l = lanes::dot(ns, l, l_w_n_w);
+      const M lit = in_range & (lanes::dot(l, ng, l_w_n_w) > zero) & (n_dot_l > zero);
+      out.lit = mlib::bits(lit) & active;
+      if (!out.lit) continue;
+      V term[3], r[3];
+      for (int c = 0; c < 3; ++c) term[c] = kd[c] * n_dot_l;
+      const V twice = V::broadcast(2.0f) * n_dot_l;
+      for (int c = 0; c < 3; ++c) r[c] = twice * ns[c] - l[c];
+      const V r_dot_v = lanes::dot(r, view, zero);
+      const M shiny = lit & shiny_material & (r_dot_v > zero);
+      if (const unsigned bits = mlib::bits(shiny) & active) {
+        alignas(64) float base[kHitLanes], power[kHitLanes] = {};
+        r_dot_v.store(base);
+        for (unsigned m = bits; m; m &= m - 1) {
+          const int j = std::countr_zero(m);
+          power[j] = std::pow(base[j], sc.materials[p.material_index[j]].shininess);
+        }
+        const V pw = V::load(power);
+        for (int c = 0; c < 3; ++c) term[c] = select(shiny, term[c] + ks[c] * pw, term[c]);
+      }
+      V weighted[3];
+      if (light.has_range()) {
+        const V x = dist / range, x2 = x * x, w = V::broadcast(1.0f) - x2 * x2;
+        const V window = w * w;
+        for (int c = 0; c < 3; ++c)
+          weighted[c] = weight[c] * (term[c] * (V::broadcast(light.radiance()[c]) * window));
+      } else {
+        for (int c = 0; c < 3; ++c)
+          weighted[c] = weight[c] * (term[c] * V::broadcast(light.radiance()[c]));
+      }
+      lanes::store3(weighted, out.term);
+      lanes::store3(l, out.dir);
+      l_w.store(out.dir_w);
+      dist.store(out.distance);
+    }
+  }
+  // The reflected ray (spawn), where deep and heavy enough.
+  p.reflects = 0;
+  if (depth < st.depth) {
+    V w[3];
+    for (int c = 0; c < 3; ++c) w[c] = weight[c] * kr;
+    const M heavy = max(max(w[0], w[1]), w[2]) > V::broadcast(st.min_weight);  // hmax3
+    p.reflects = mlib::bits((kr > zero) & heavy) & active;
+    if (p.reflects) {
+      // reflect(dir, ns) = dir - 2 ns (ns·dir)
+      const V d = lanes::dot(ns, dir, ns_w_dir_w);
+      V r[3];
+      for (int c = 0; c < 3; ++c) r[c] = dir[c] - (V::broadcast(2.0f) * ns[c]) * d;
+      lanes::store3(r, p.reflect_dir);
+      (zero - zero * d).store(p.reflect_dir_w);  // 0 - (2 ns.w) d: +0, or NaN
+      lanes::store3(w, p.reflect_weight);
+    }
+  }
+}
+
+// Lane l's results into the batch, as shade and spawn add them for one hit.
+inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, Batches& b,
+                      RayCounts& counts) {
+  const unsigned bit = 1u << l;
+  const std::uint32_t sample = p.sample[l];
+  b.colors[sample] += vec4(p.ambient_term[0][l], p.ambient_term[1][l], p.ambient_term[2][l]);
+  const std::size_t light_count = sc.lights.size();
+  ++counts.lights.points;
+  ++counts.lights.in_lanes;
+  counts.lights.considered += light_count;
+  const vec4 above(p.above[0][l], p.above[1][l], p.above[2][l]);
+  for (std::size_t k = 0; k < light_count; ++k) {
+    const PhongLanes::LightLanes& lt = p.light[k];
+    counts.lights.in_range += (lt.in_range & bit) != 0;
+    if (!(lt.lit & bit)) continue;
+    ++counts.shadow;
+    ShadowRay& sr = b.shadows.emplace_back();
+    sr.ray.org = above;
+    sr.ray.dir = vec4(lt.dir[0][l], lt.dir[1][l], lt.dir[2][l], lt.dir_w[l]);
+    sr.term = vec4(lt.term[0][l], lt.term[1][l], lt.term[2][l]);
+    sr.distance = lt.distance[l];
+    sr.sample = sample;
+    sr.light = static_cast<std::uint32_t>(k);
+    sr.unoccluded = false;
+  }
+  if (p.reflects & bit) {
+    PathRay& pr = b.next.emplace_back();
+    pr.ray.org = above;
+    pr.ray.dir = vec4(p.reflect_dir[0][l], p.reflect_dir[1][l], p.reflect_dir[2][l],
+                      p.reflect_dir_w[l]);
+    for (int c = 0; c < 3; ++c) pr.rgb[c] = p.reflect_weight[c][l];
+    pr.sample = sample;
+    ++counts.reflection;
+  }
+}
+
+}  // namespace detail
+}  // namespace rt2::RT2_ISA
