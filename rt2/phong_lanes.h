@@ -78,53 +78,112 @@ struct PhongLanes {
   void clear_kinds() { triangles = spheres = planes = 0; }
 };
 
-// Lane l of p: hit i of the batch, on material `material` (which lane_shadable accepts).
-inline void gather_lane(const CompiledScene& sc, const Batches& b, std::size_t i,
-                        std::uint32_t material, int l, PhongLanes& p) {
-  const PathRay& pr = b.rays[i];
-  const Hit& h = b.hits[i];
+namespace lanes {
+
+namespace simd = mlib::simd;
+
+// Lanes 4 j ... 4 j + 3 of x, y, z from the first three lanes of four vec4s.
+MLIB_INLINE void put4(simd::f4 v0, simd::f4 v1, simd::f4 v2, simd::f4 v3, float* x, float* y,
+                      float* z, int j) {
+  simd::f4 a, b, c, w;
+  simd::transpose4(v0, v1, v2, v3, a, b, c, w);
+  simd::store(x + 4 * j, a);
+  simd::store(y + 4 * j, b);
+  simd::store(z + 4 * j, c);
+}
+MLIB_INLINE void put4(simd::f4 v0, simd::f4 v1, simd::f4 v2, simd::f4 v3,
+                      float (&a)[3][kHitLanes], int j) {
+  put4(v0, v1, v2, v3, a[0], a[1], a[2], j);
+}
+
+}  // namespace lanes
+
+// Gathers the hits of rays [first, end) of the batch (at most kHitLanes) that take the
+// lanes into p, four lanes at a time (a transpose of four vec4s per quantity); returns
+// their lanes. Lanes past `end`, and the fields of other kinds, hold copies of a valid lane.
+inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::size_t first,
+                             std::size_t end, PhongLanes& p) {
+  namespace simd = mlib::simd;
   const Accel& acc = sc.accel;
-  for (int c = 0; c < 3; ++c) {
-    p.org[c][l] = pr.ray.org[c];
-    p.dir[c][l] = pr.ray.dir[c];
-    p.weight[c][l] = pr.rgb[c];
+  p.clear_kinds();
+  unsigned active = 0;
+  std::uint32_t kind_index[kHitLanes];
+  for (int l = 0; l < kHitLanes; ++l) {
+    const std::size_t i = first + std::size_t(l);
+    if (i >= end || !b.hits[i].found()) continue;
+    const PrimRef prim = b.hits[i].prim;
+    const std::uint32_t material = acc.material_of(prim);
+    if (!lane_shadable(sc.materials[material])) continue;
+    const unsigned bit = 1u << l;
+    active |= bit;
+    p.material[l] = float(material);
+    p.material_index[l] = material;
+    kind_index[l] = prim_index(prim);
+    const PrimRef tag = prim_tag(prim);
+    p.triangles |= tag == kTriangleTag ? bit : 0u;
+    p.spheres |= tag == kSphereTag ? bit : 0u;
+    p.planes |= tag == kPlaneTag ? bit : 0u;
   }
-  p.t[l] = h.t;
-  p.u[l] = h.u;
-  p.v[l] = h.v;
-  p.sample[l] = pr.sample;
-  const std::uint32_t k = prim_index(h.prim);
-  const unsigned bit = 1u << l;
-  if (prim_tag(h.prim) == kTriangleTag) {
-    const Triangle& tri = acc.tris[k];
-    for (int c = 0; c < 3; ++c) {
-      p.v0[c][l] = tri.v0[c];
-      p.v1[c][l] = tri.v1[c];
-      p.v2[c][l] = tri.v2[c];
-      p.tri_n[c][l] = tri.n[c];
+  if (!active) return 0;
+  // Rays and hits (lanes past the batch repeat its last ray).
+  for (int j = 0; j < kHitLanes / 4; ++j) {
+    const PathRay* r[4];
+    const Hit* h[4];
+    for (int k = 0; k < 4; ++k) {
+      const std::size_t i = std::min(first + std::size_t(4 * j + k), end - 1);
+      r[k] = &b.rays[i];
+      h[k] = &b.hits[i];
+      p.sample[4 * j + k] = r[k]->sample;
     }
-    if (!acc.tri_normals.empty()) {
-      const auto& n = acc.tri_normals[k];
-      for (int c = 0; c < 3; ++c) {
-        p.n0[c][l] = n[0][c];
-        p.n1[c][l] = n[1][c];
-        p.n2[c][l] = n[2][c];
-      }
-    }
-    p.triangles |= bit;
-  } else if (prim_tag(h.prim) == kSphereTag) {
-    const Sphere& s = acc.spheres[k];
-    for (int c = 0; c < 3; ++c) p.center[c][l] = s.center[c];
-    p.radius[l] = s.radius;
-    p.spheres |= bit;
-  } else {
-    const Plane& pl = acc.planes[k];
-    for (int c = 0; c < 3; ++c) p.plane_n[c][l] = pl.n[c];
-    p.plane_d[l] = pl.d;
-    p.planes |= bit;
+    lanes::put4(r[0]->ray.org.m128(), r[1]->ray.org.m128(), r[2]->ray.org.m128(),
+                r[3]->ray.org.m128(), p.org, j);
+    lanes::put4(r[0]->ray.dir.m128(), r[1]->ray.dir.m128(), r[2]->ray.dir.m128(),
+                r[3]->ray.dir.m128(), p.dir, j);
+    lanes::put4(simd::load_xyz0(r[0]->rgb), simd::load_xyz0(r[1]->rgb),
+                simd::load_xyz0(r[2]->rgb), simd::load_xyz0(r[3]->rgb), p.weight, j);
+    lanes::put4(simd::load_xyz0(&h[0]->t), simd::load_xyz0(&h[1]->t), simd::load_xyz0(&h[2]->t),
+                simd::load_xyz0(&h[3]->t), p.t, p.u, p.v, j);
   }
-  p.material[l] = float(material);
-  p.material_index[l] = material;
+  // Each kind's data (other lanes read the kind's first lane).
+  const auto each_quad = [&](unsigned kind, auto&& f) {
+    const int any = std::countr_zero(kind);
+    for (int j = 0; j < kHitLanes / 4; ++j) {
+      std::uint32_t k[4];
+      for (int q = 0; q < 4; ++q) k[q] = kind_index[kind >> (4 * j + q) & 1 ? 4 * j + q : any];
+      f(j, k);
+    }
+  };
+  if (p.triangles) {
+    const Triangle* t = acc.tris.data();
+    each_quad(p.triangles, [&](int j, const std::uint32_t* k) {
+      lanes::put4(t[k[0]].v0.m128(), t[k[1]].v0.m128(), t[k[2]].v0.m128(), t[k[3]].v0.m128(), p.v0, j);
+      lanes::put4(t[k[0]].v1.m128(), t[k[1]].v1.m128(), t[k[2]].v1.m128(), t[k[3]].v1.m128(), p.v1, j);
+      lanes::put4(t[k[0]].v2.m128(), t[k[1]].v2.m128(), t[k[2]].v2.m128(), t[k[3]].v2.m128(), p.v2, j);
+      lanes::put4(t[k[0]].n.m128(), t[k[1]].n.m128(), t[k[2]].n.m128(), t[k[3]].n.m128(), p.tri_n, j);
+      if (acc.tri_normals.empty()) return;
+      const auto* n = acc.tri_normals.data();
+      lanes::put4(n[k[0]][0].m128(), n[k[1]][0].m128(), n[k[2]][0].m128(), n[k[3]][0].m128(), p.n0, j);
+      lanes::put4(n[k[0]][1].m128(), n[k[1]][1].m128(), n[k[2]][1].m128(), n[k[3]][1].m128(), p.n1, j);
+      lanes::put4(n[k[0]][2].m128(), n[k[1]][2].m128(), n[k[2]][2].m128(), n[k[3]][2].m128(), p.n2, j);
+    });
+  }
+  if (p.spheres) {
+    const Sphere* sp = acc.spheres.data();
+    each_quad(p.spheres, [&](int j, const std::uint32_t* k) {
+      lanes::put4(sp[k[0]].center.m128(), sp[k[1]].center.m128(), sp[k[2]].center.m128(),
+                  sp[k[3]].center.m128(), p.center, j);
+      for (int q = 0; q < 4; ++q) p.radius[4 * j + q] = sp[k[q]].radius;
+    });
+  }
+  if (p.planes) {
+    const Plane* pl = acc.planes.data();
+    each_quad(p.planes, [&](int j, const std::uint32_t* k) {
+      lanes::put4(pl[k[0]].n.m128(), pl[k[1]].n.m128(), pl[k[2]].n.m128(), pl[k[3]].n.m128(),
+                  p.plane_n, j);
+      for (int q = 0; q < 4; ++q) p.plane_d[4 * j + q] = pl[k[q]].d;
+    });
+  }
+  return active;
 }
 
 namespace lanes {

@@ -330,14 +330,7 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
     const std::size_t end = std::min(first + kHitLanes, n);
     unsigned shaded = 0;  // the lanes shaded in SIMD
     if (in_lanes) {
-      lanes.clear_kinds();
-      for (std::size_t i = first; i < end; ++i) {
-        if (!b.hits[i].found()) continue;
-        const std::uint32_t material = sc.accel.material_of(b.hits[i].prim);
-        if (!lane_shadable(sc.materials[material])) continue;
-        gather_lane(sc, b, i, material, int(i - first), lanes);
-        shaded |= 1u << (i - first);
-      }
+      shaded = gather_lanes(sc, b, first, end, lanes);
       if (shaded) shade_lanes(sc, st, depth, shaded, lanes);
     }
     for (std::size_t i = first; i < end; ++i) {
