@@ -15,7 +15,7 @@
 // Which hits: a Phong material without a texture or transparency (textures and refraction
 // keep the one-hit step), when every hit considers every light (no light lists) and there
 // are at most kMaxLaneLights lights (the results of each lane's lights are kept until they
-// are emitted in order).
+// are emitted in order) and kMaxLaneMaterials materials.
 //
 // Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
 #pragma once
@@ -35,6 +35,7 @@ namespace detail {
 
 inline constexpr int kHitLanes = mlib::kWidestLanes;
 inline constexpr std::size_t kMaxLaneLights = 8;
+inline constexpr std::size_t kMaxLaneMaterials = std::size_t(1) << 24;  // exact as floats
 
 // Whether a hit on material m takes the lanes (see above; the scene-wide conditions are
 // the caller's).
@@ -43,14 +44,14 @@ inline bool lane_shadable(const Material& m) {
          !(m.transparency > 0.0f);
 }
 
-// One pass's inputs (gathered lane by lane) and results.
+// One pass's inputs (gather_lanes) and results.
 struct PhongLanes {
   using F = float[kHitLanes];
   using F3 = float[3][kHitLanes];
   // the ray and its hit
   alignas(64) F3 org, dir, weight;
   alignas(64) F t, u, v;
-  // per primitive kind (zero in the other kinds' lanes)
+  // per primitive kind (the other lanes hold a copy of one of its lanes)
   alignas(64) F3 v0, v1, v2, tri_n;   // triangles: vertices, unnormalised normal
   alignas(64) F3 n0, n1, n2;          // triangles' vertex normals (without: unused)
   alignas(64) F3 center;              // spheres
@@ -58,7 +59,7 @@ struct PhongLanes {
   alignas(64) F3 plane_n;             // planes
   alignas(64) F plane_d;
   unsigned triangles = 0, spheres = 0, planes = 0;  // lanes of each kind
-  // the material's index (as a float: exact below 2^24 materials; the lanes of one
+  // the material's index (as a float, exact: at most kMaxLaneMaterials; the lanes of one
   // material take its values together)
   alignas(64) F material;
   std::uint32_t material_index[kHitLanes];

@@ -323,7 +323,8 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
   // the angle a pixel spans at the image centre: a texture lookup's footprint per distance
   const float pixel_angle =
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
-  const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights;
+  const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights &&
+                        sc.materials.size() <= kMaxLaneMaterials;
   PhongLanes lanes{};  // zero: lanes a pass does not fill hold finite values
   const std::size_t n = b.rays.size();
   for (std::size_t first = 0; first < n; first += kHitLanes) {
