@@ -75,18 +75,22 @@ MLIB_INLINE f4 blend(f4 mask, f4 if_false, f4 if_true) {
 // `dp_bcast` (mask 0xFF) puts the sum in every lane, which saves the shuffle when the
 // result is used as a vector.
 //
-// In the translation units built for AVX2 and AVX-512 (the render kernels, rt2/isa.h),
-// dp_bcast is one multiply and two shuffle-adds in that order instead: the same bits in
-// every lane (the last add is commutative), and dpps, four micro-ops with a long latency,
-// made the kernel's hit shading slower (headline frame +2.5 % without it). The baseline
-// keeps dpps, the thesis's form (tests/mlib/asm_test.cpp counts its instructions). Each
-// form lives in an inline namespace of its own, so the two definitions never meet.
-#if defined(__AVX2__)
+// In the translation units of the AVX2 and AVX-512 ray kernels (the build defines
+// MLIB_SHUFFLED_DOT for them alone, rt2/isa.h), dp_bcast is one multiply and two
+// shuffle-adds instead, every lane summing (x x' + y y') + (z z' + w w') with its operands
+// in that order: the same bits (dpps, four micro-ops with a long latency, made the kernel's
+// hit shading slower: headline frame +2.5 % without it). The baseline keeps dpps, the
+// thesis's form (tests/mlib/asm_test.cpp counts its instructions), also where it is built
+// with AVX2 (scons arch=native). Each form lives in an inline namespace of its own, so the
+// two dp_bcast never share a symbol; their callers (vec4's dot, normalize, ...) are
+// always-inline, so no out-of-line copy of one is ever shared either (tests/rt2/isa_test.cpp
+// checks that no wide instruction leaves the wide units).
+#if defined(MLIB_SHUFFLED_DOT)
 inline namespace shuffled_dot {
 MLIB_INLINE f4 dp_bcast(f4 a, f4 b) {
   const __m128 m = _mm_mul_ps(a, b);
-  const __m128 pairs = _mm_add_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
-  return _mm_add_ps(pairs, _mm_shuffle_ps(pairs, pairs, _MM_SHUFFLE(1, 0, 3, 2)));
+  const __m128 pairs = _mm_add_ps(_mm_moveldup_ps(m), _mm_movehdup_ps(m));  // x+y, z+w
+  return _mm_add_ps(_mm_movelh_ps(pairs, pairs), _mm_movehl_ps(pairs, pairs));
 }
 }  // namespace shuffled_dot
 #else
@@ -168,6 +172,9 @@ MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int
   _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
                    _mm_min_epi32(_mm_max_epi32(i, _mm_set1_epi32(lo)), _mm_set1_epi32(hi)));
 }
+
+// a with w = +0.
+MLIB_INLINE f4 zero_w(f4 a) { return _mm_blend_ps(a, _mm_setzero_ps(), 0x8); }
 
 // Each lane's bits, read as an int32, plus k truncated toward zero (NaN and values outside
 // int32 give INT32_MIN), or minus it where a < 0, wrapping: a moved by trunc(k) floats,

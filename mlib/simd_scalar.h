@@ -270,6 +270,8 @@ MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int
   }
 }
 
+MLIB_INLINE f4 zero_w(f4 a) { return f4{{a.v[0], a.v[1], a.v[2], 0.0f}}; }
+
 // See simd.h: bits plus trunc(k), minus where a < 0, wrapping.
 MLIB_INLINE f4 step_ulps(f4 a, f4 k) {
   f4 r;

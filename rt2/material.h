@@ -63,12 +63,16 @@ struct Material {
 
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.
-  // Inline: the render kernel calls it per hit.
-  vec4 diffuse_at(const vec4& p) const {
+  // Always inline: the render kernels, compiled per instruction set, call it per hit, and
+  // an out-of-line copy would be one symbol with wide and baseline bodies.
+  MLIB_INLINE vec4 diffuse_at(const vec4& p) const {
     if (!(checker_scale > 0.0f)) return diffuse;
     const float inv = 1.0f / checker_scale;
-    const auto cell = [&](int a) { return static_cast<long long>(std::floor(p[a] * inv)); };
-    return ((cell(0) + cell(1) + cell(2)) & 1) ? diffuse2 : diffuse;
+    // the cells' sum, unsigned: only its parity matters
+    const auto cells = static_cast<unsigned long long>(static_cast<long long>(std::floor(p[0] * inv))) +
+                       static_cast<unsigned long long>(static_cast<long long>(std::floor(p[1] * inv))) +
+                       static_cast<unsigned long long>(static_cast<long long>(std::floor(p[2] * inv)));
+    return (cells & 1) ? diffuse2 : diffuse;
   }
 };
 

@@ -27,8 +27,7 @@ MLIB_INLINE vec4 offset_ray_origin(const vec4& p, const vec4& n, float scale = 1
   const vec4 moved = simd::step_ulps(p.eval(), (kIntScale * n).eval());
   const vec4 near = p + float_scale * n;
   const simd::f4 is_near = simd::cmp_lt(simd::abs(p.eval()), simd::set1(origin));
-  const simd::f4 xyz = simd::cmp_eq(simd::setr(1.0f, 1.0f, 1.0f, 0.0f), simd::set1(1.0f));
-  return simd::bit_and(simd::blend(is_near, moved.eval(), near.eval()), xyz);
+  return simd::zero_w(simd::blend(is_near, moved.eval(), near.eval()));
 }
 
 }  // namespace rt2

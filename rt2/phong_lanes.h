@@ -5,7 +5,9 @@
 // Every lane computes what the one-hit code computes, bit for bit: the same operations in
 // the same order, vec4's dot product as (x x' + y y') + (z z' + w w') with the w lanes the
 // one-hit code carries (all +0, but a flipped normal's -0, which decides the sign of a zero
-// dot product in reflect), normalize's rescaling path taken per lane by the one-hit
+// dot product in reflect; the light's dot products take their w term as +0 or NaN, as only
+// their sign above 0 and their value when positive are used, which a zero's sign cannot
+// change), normalize's rescaling path taken per lane by the one-hit
 // normalize, the checker's cell parity from exact floors (a cell index of 2^24 or more is
 // even, as every float that large is; NaN and beyond int64 give the cast's even integer
 // indefinite), std::pow per lane for highlights. The caller emits each lane's results in
@@ -107,6 +109,7 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
   namespace simd = mlib::simd;
   const Accel& acc = sc.accel;
   p.clear_kinds();
+  for (int l = 0; l < kHitLanes; ++l) p.material[l] = -1.0f;  // no material: lanes left out
   unsigned active = 0;
   std::uint32_t kind_index[kHitLanes];
   for (int l = 0; l < kHitLanes; ++l) {
@@ -205,18 +208,18 @@ MLIB_INLINE void select3(M m, const V* a, const V* b, V* out) {
   for (int c = 0; c < 3; ++c) out[c] = select(m, a[c], b[c]);
 }
 // Lanes of `lanes` set.
-MLIB_INLINE M lanes_of(unsigned lanes) {
+MLIB_INLINE M lanes_of(unsigned mask) {
   alignas(64) float f[kHitLanes];
-  for (int l = 0; l < kHitLanes; ++l) f[l] = lanes >> l & 1 ? 1.0f : 0.0f;
+  for (int l = 0; l < kHitLanes; ++l) f[l] = mask >> l & 1 ? 1.0f : 0.0f;
   return V::load(f) > V::broadcast(0.0f);
 }
 
 // a / |a| as vec4's normalize of (a, +0): divided by sqrt(a·a) where that is a normal
-// float, and through normalize itself (its rescaling path) in the other lanes of `lanes`.
-MLIB_INLINE void normalize(V* a, unsigned lanes) {
+// float, and through normalize itself (its rescaling path) in the other lanes of `mask`.
+MLIB_INLINE void normalize(V* a, unsigned mask) {
   const V len2 = dot(a, a, V::broadcast(0.0f));
   const unsigned slow =
-      lanes & ~mlib::bits((len2 >= V::broadcast(FLT_MIN)) & (len2 <= V::broadcast(FLT_MAX)));
+      mask & ~mlib::bits((len2 >= V::broadcast(FLT_MIN)) & (len2 <= V::broadcast(FLT_MAX)));
   alignas(64) float in[3][kHitLanes];
   if (slow) store3(a, in);
   const V len = sqrt(len2);
@@ -241,7 +244,7 @@ MLIB_INLINE V cell_parity(V x) {
 
 }  // namespace lanes
 
-// The pass over the lanes of `active` (each filled by gather_lane): p's results, for a
+// The pass over the lanes of `active` (filled by gather_lanes): p's results, for a
 // scene whose every hit considers all of its sc.lights.size() <= kMaxLaneLights lights.
 inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int depth,
                         unsigned active, PhongLanes& p) {

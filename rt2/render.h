@@ -59,9 +59,10 @@ struct RenderSettings {
   // BVH together where its rays allow (rt2/bvh/packet_traverse.h); false: every ray alone.
   // The image does not depend on it.
   bool packets = true;
-  // Phong hits are shaded kWidestLanes at a time in one SIMD pass (rt2/phong_lanes.h) when
-  // every hit considers every light and there are at most 8; false: one hit at a time. The
-  // image does not depend on it.
+  // Phong hits without texture or transparency are shaded kWidestLanes at a time in one
+  // SIMD pass (rt2/phong_lanes.h) when every hit considers every light (no light lists)
+  // and there are at most kMaxLaneLights (8) lights; false: one hit at a time. The image
+  // does not depend on it.
   bool shading_lanes = true;
   // Lights: which ones each shading point considers (tiled and clustered culling use the
   // lists for primary hits and the light tree for the others), how the lists are filled,

@@ -9,7 +9,8 @@
 //   2. intersect the batch (closest hit), packet by packet (secondary batches 16 rays at a
 //      time, in batch order): rt2/query.h's packet queries, or one ray at a time when
 //      RenderSettings::packets is off, with the same answers;
-//   3. shade the hits: their surface points; the lights each point considers (all of
+//   3. shade the hits (Phong hits kWidestLanes at a time where the scene allows:
+//      phong_lanes.h): their surface points; the lights each point considers (all of
 //      them, or a list from light culling: per block or per depth slice of a block for
 //      primary hits, from a walk of the light tree for the others; RenderSettings::
 //      light_culling); the ambient term goes to the sample's colour at once; for each of
@@ -325,18 +326,18 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
   const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights &&
                         sc.materials.size() <= kMaxLaneMaterials;
-  PhongLanes lanes{};  // zero: lanes a pass does not fill hold finite values
+  PhongLanes phong;  // every lane a pass reads, gather_lanes writes
   const std::size_t n = b.rays.size();
   for (std::size_t first = 0; first < n; first += kHitLanes) {
     const std::size_t end = std::min(first + kHitLanes, n);
     unsigned shaded = 0;  // the lanes shaded in SIMD
     if (in_lanes) {
-      shaded = gather_lanes(sc, b, first, end, lanes);
-      if (shaded) shade_lanes(sc, st, depth, shaded, lanes);
+      shaded = gather_lanes(sc, b, first, end, phong);
+      if (shaded) shade_lanes(sc, st, depth, shaded, phong);
     }
     for (std::size_t i = first; i < end; ++i) {
       if (shaded >> (i - first) & 1) {
-        emit_lane(sc, lanes, int(i - first), b, counts);
+        emit_lane(sc, phong, int(i - first), b, counts);
         continue;
       }
       const PathRay& pr = b.rays[i];

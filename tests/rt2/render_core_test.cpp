@@ -86,7 +86,7 @@ TEST(RenderCore, PacketsOnOrOffGiveIdenticalImagesOnEveryIsaAndTest) {
 
 // A scene at the numbers' edges for the shading lanes: a quad 1e9 away whose normal's
 // square overflows and one 1e-12 away whose square underflows (normalize's rescaling path),
-// a checker plane whose cells run past 2^24 and 2^63 towards the horizon, a mirror sphere,
+// a checker plane whose cells run past 2^24 towards the horizon, a mirror sphere,
 // a textured-free glass cube (refraction: the one-hit step, in the same passes), a light
 // with a range (its window), one beyond float's reach (never in range) and an ordinary one.
 Scene lanes_edge_scene() {
@@ -138,11 +138,41 @@ Scene lanes_edge_scene() {
   return s;
 }
 
+// Hits from behind: the camera inside a mirror shell of flat triangles (no vertex normals
+// anywhere in the scene) holding the built-in scene's content, made flat too; or inside a
+// mirror sphere holding a flat icosahedron. Every normal the lanes meet there is flipped.
+Scene inside_mirror(bool shell) {
+  Scene s = make_default_scene();
+  for (Mesh& m : s.meshes) m.normals.clear();
+  Material mirror;
+  mirror.diffuse = vec4(0.2f, 0.3f, 0.2f);
+  mirror.specular = vec4(0.5f, 0.5f, 0.5f);
+  mirror.reflectivity = 0.7f;
+  const std::uint32_t m = s.add_material("inside mirror", mirror);
+  const vec4 eye = s.camera.position();
+  if (shell) {
+    Mesh ball = make_icosphere(eye, 40.0f, 2, m);
+    ball.normals.clear();
+    s.meshes.push_back(ball);
+  } else {
+    s.meshes.clear();
+    s.planes.clear();
+    s.plane_materials.clear();
+    s.spheres.push_back(Sphere{eye, 3.0f});
+    s.sphere_materials.push_back(m);
+    Mesh ico = make_icosphere(eye + s.camera.forward() * 1.5f, 0.5f, 0, m);
+    ico.normals.clear();
+    s.meshes.push_back(ico);
+    s.lights = {Light{eye + vec4(0.5f, 1.0f, 0.2f), vec4(1, 1, 1), 1.0f}};
+  }
+  return s;
+}
+
 // The shading lanes (RenderSettings::shading_lanes) compute what the one-hit step
 // computes: the image is the same bits with them on or off, on every instruction set, with
 // both triangle tests, supersampling and deep mirrors; with lights up to the lanes' limit
-// (and beyond it, where every hit takes the one-hit step); on glass, whose hits take the
-// one-hit step between lanes of the same pass; and at the numbers' edges above.
+// (and beyond it, where every hit takes the one-hit step) and none; on glass, whose hits
+// take the one-hit step between lanes of the same pass; at the numbers' edges; from behind.
 TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) {
   Scene glass = test::glass_scene();
   Material g = glass.materials[glass.sphere_materials.back()];
@@ -158,9 +188,14 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
   std::vector<Case> cases;
   cases.push_back({"glass", glass, 0, true});
   cases.push_back({"edges", lanes_edge_scene(), 0, true});
-  for (std::size_t lights : {1u, 8u, 9u}) {
+  cases.push_back({"inside a shell", inside_mirror(true), 0, true});
+  cases.push_back({"inside a sphere", inside_mirror(false), 0, true});
+  for (std::size_t lights : {0u, 1u, 8u, 9u}) {
     Scene s = make_default_scene();
-    set_light_count(s, lights);
+    if (lights == 0)
+      s.lights.clear();
+    else
+      set_light_count(s, lights);
     cases.push_back({"built-in", s, lights, lights <= 8});
   }
   for (const Case& c : cases)
@@ -180,6 +215,8 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
         EXPECT_TRUE(identical(ref, img)) << what;
         EXPECT_EQ(one.rays.total(), lanes.rays.total()) << what;
         EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
+        EXPECT_EQ(one.rays.lights.points, lanes.rays.lights.points) << what;
+        EXPECT_EQ(one.rays.lights.considered, lanes.rays.lights.considered) << what;
         // The property is the lanes': most hits must take them where they can.
         EXPECT_EQ(one.rays.lights.in_lanes, 0u) << what;
         if (c.lanes_expected)
