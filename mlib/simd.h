@@ -44,10 +44,10 @@ MLIB_INLINE f4 set1(float s) { return _mm_set1_ps(s); }
 MLIB_INLINE f4 setr(float x, float y, float z, float w) { return _mm_setr_ps(x, y, z, w); }
 MLIB_INLINE f4 load(const float* p) { return _mm_loadu_ps(p); }
 MLIB_INLINE void store(float* p, f4 a) { _mm_storeu_ps(p, a); }
+// a with lane w set to +0.
+MLIB_INLINE f4 zero_w(f4 a) { return _mm_blend_ps(a, _mm_setzero_ps(), 0x8); }
 // Loads p[0..2] and sets lane w to 0 (p[3] is read but discarded: it may hold any bits).
-MLIB_INLINE f4 load_xyz0(const float* p) {
-  return _mm_blend_ps(_mm_loadu_ps(p), _mm_setzero_ps(), 0x8);
-}
+MLIB_INLINE f4 load_xyz0(const float* p) { return zero_w(_mm_loadu_ps(p)); }
 MLIB_INLINE float lane0(f4 a) { return _mm_cvtss_f32(a); }
 
 // --- lane-wise arithmetic ------------------------------------------------------------
@@ -172,9 +172,6 @@ MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int
   _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
                    _mm_min_epi32(_mm_max_epi32(i, _mm_set1_epi32(lo)), _mm_set1_epi32(hi)));
 }
-
-// a with w = +0.
-MLIB_INLINE f4 zero_w(f4 a) { return _mm_blend_ps(a, _mm_setzero_ps(), 0x8); }
 
 // Each lane's bits, read as an int32, plus k truncated toward zero (NaN and values outside
 // int32 give INT32_MIN), or minus it where a < 0, wrapping: a moved by trunc(k) floats,

@@ -27,6 +27,8 @@ struct vfloat4 {
   MLIB_INLINE void store(float* p) const {
     for (int i = 0; i < 4; ++i) p[i] = v[i];
   }
+  MLIB_INLINE static vfloat4 from_f4(simd::f4 a) { return {{a.v[0], a.v[1], a.v[2], a.v[3]}}; }
+  MLIB_INLINE simd::f4 to_f4() const { return simd::f4{{v[0], v[1], v[2], v[3]}}; }
 };
 
 namespace detail {

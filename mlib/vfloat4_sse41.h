@@ -29,6 +29,9 @@ struct vfloat4 {
   MLIB_INLINE static vfloat4 broadcast(float s) { return {_mm_set1_ps(s)}; }
   MLIB_INLINE static vfloat4 load(const float* p) { return {_mm_load_ps(p)}; }  // 16-byte aligned
   MLIB_INLINE void store(float* p) const { _mm_store_ps(p, v); }
+  // From and to simd.h's four floats (vec4's lanes), without a trip through memory.
+  MLIB_INLINE static vfloat4 from_f4(simd::f4 a) { return {a}; }
+  MLIB_INLINE simd::f4 to_f4() const { return v; }
 };
 
 MLIB_INLINE vfloat4 operator+(vfloat4 a, vfloat4 b) { return {_mm_add_ps(a.v, b.v)}; }

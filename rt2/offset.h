@@ -14,20 +14,26 @@
 // millimetres to hundreds of kilometres get the same relative margin.
 #pragma once
 
+#include "mlib/vfloat.h"
 #include "rt2/ray.h"
 
 namespace rt2 {
 
+// One coordinate p of a point moved along the same coordinate n of the normal, lane by lane
+// for any mlib::vfloat: by (int)(256 n) floats, or by scale / 65536 x n where |p| < scale /
+// 32. The render kernel's shading lanes (phong_lanes.h) call it on whole lanes of points.
+template <class V>
+MLIB_INLINE V offset_coordinate(V p, V n, float scale) {
+  const V origin = V::broadcast(scale / 32.0f), float_scale = V::broadcast(scale / 65536.0f);
+  return select(abs(p) < origin, p + float_scale * n, step_ulps(p, V::broadcast(256.0f) * n));
+}
+
+// p's x, y and z, each as offset_coordinate; w = 0.
 MLIB_INLINE vec4 offset_ray_origin(const vec4& p, const vec4& n, float scale = 1.0f) {
-  const float origin = scale / 32.0f;
-  const float float_scale = scale / 65536.0f;
-  constexpr float kIntScale = 256.0f;
-  // Per lane: p moved by (int)(256 n) floats, or by float_scale n where |p| < origin; w = 0.
-  namespace simd = mlib::simd;
-  const vec4 moved = simd::step_ulps(p.eval(), (kIntScale * n).eval());
-  const vec4 near = p + float_scale * n;
-  const simd::f4 is_near = simd::cmp_lt(simd::abs(p.eval()), simd::set1(origin));
-  return simd::zero_w(simd::blend(is_near, moved.eval(), near.eval()));
+  using mlib::vfloat4;
+  const vfloat4 moved =
+      offset_coordinate(vfloat4::from_f4(p.eval()), vfloat4::from_f4(n.eval()), scale);
+  return mlib::simd::zero_w(moved.to_f4());
 }
 
 }  // namespace rt2

@@ -30,6 +30,8 @@
 #include "mlib/vfloat.h"
 #include "rt2/batches.h"
 #include "rt2/compiled_scene.h"
+#include "rt2/geometry/plane_sphere_packet_intersect.h"  // dot_dpps, negate
+#include "rt2/offset.h"
 #include "rt2/render.h"
 
 namespace rt2::RT2_ISA {
@@ -201,9 +203,6 @@ MLIB_INLINE void load3(const float (&a)[3][kHitLanes], V* v) {
 MLIB_INLINE void store3(const V* v, float (&a)[3][kHitLanes]) {
   for (int c = 0; c < 3; ++c) v[c].store(a[c]);
 }
-// vec4's dot of (a, w_a) and (b, w_b) given w_a w_b: (a_x b_x + a_y b_y) + (a_z b_z + w).
-MLIB_INLINE V dot(const V* a, const V* b, V w) { return (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + w); }
-MLIB_INLINE V negate(V x) { return xor_sign(x, V::broadcast(-0.0f)); }
 MLIB_INLINE void select3(M m, const V* a, const V* b, V* out) {
   for (int c = 0; c < 3; ++c) out[c] = select(m, a[c], b[c]);
 }
@@ -217,7 +216,7 @@ MLIB_INLINE M lanes_of(unsigned mask) {
 // a / |a| as vec4's normalize of (a, +0): divided by sqrt(a·a) where that is a normal
 // float, and through normalize itself (its rescaling path) in the other lanes of `mask`.
 MLIB_INLINE void normalize(V* a, unsigned mask) {
-  const V len2 = dot(a, a, V::broadcast(0.0f));
+  const V len2 = dot_dpps(a, a, V::broadcast(0.0f));
   const unsigned slow =
       mask & ~mlib::bits((len2 >= V::broadcast(FLT_MIN)) & (len2 <= V::broadcast(FLT_MAX)));
   alignas(64) float in[3][kHitLanes];
@@ -265,7 +264,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
     const M is = lanes::lanes_of(p.planes);
     V n[3];
     lanes::load3(p.plane_n, n);
-    const V s = lanes::dot(q, n, zero) + V::load(p.plane_d);
+    const V s = dot_dpps(q, n, zero) + V::load(p.plane_d);
     V x[3];
     for (int c = 0; c < 3; ++c) x[c] = q[c] - n[c] * s;
     lanes::select3(is, x, pos, pos);
@@ -310,24 +309,17 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
   }
   // Facing the ray: both normals flipped where it hit the back (their w becomes -0), and an
   // interpolated normal that faces away replaced by the geometric one.
-  const M entering = lanes::dot(dir, ng, zero) < zero;
+  const M entering = dot_dpps(dir, ng, zero) < zero;
   for (int c = 0; c < 3; ++c) {
-    ng[c] = select(entering, ng[c], lanes::negate(ng[c]));
-    ns[c] = select(entering, ns[c], lanes::negate(ns[c]));
+    ng[c] = select(entering, ng[c], negate(ng[c]));
+    ns[c] = select(entering, ns[c], negate(ns[c]));
   }
   const V ns_w_dir_w = select(entering, zero, V::broadcast(-0.0f));  // ns.w x dir.w (+0)
-  const M facing = lanes::dot(ns, dir, ns_w_dir_w) < zero;
+  const M facing = dot_dpps(ns, dir, ns_w_dir_w) < zero;
   for (int c = 0; c < 3; ++c) ns[c] = select(facing, ns[c], ng[c]);
   // Where secondary rays start (offset.h), per lane.
   V above[3];
-  {
-    const float scale = sc.offset_scale;
-    const V origin = V::broadcast(scale / 32.0f), float_scale = V::broadcast(scale / 65536.0f);
-    for (int c = 0; c < 3; ++c) {
-      const V moved = step_ulps(pos[c], V::broadcast(256.0f) * ng[c]);
-      above[c] = select(abs(pos[c]) < origin, pos[c] + float_scale * ng[c], moved);
-    }
-  }
+  for (int c = 0; c < 3; ++c) above[c] = offset_coordinate(pos[c], ng[c], sc.offset_scale);
   lanes::store3(above, p.above);
   // The materials' values, material by material (a pass's hits share a few).
   V ka[3], kd[3], ks[3], kr = zero;
@@ -367,28 +359,28 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
   if (light_count > 0) {
     const M shiny_material = (ks[0] > zero) | (ks[1] > zero) | (ks[2] > zero);
     V view[3];
-    for (int c = 0; c < 3; ++c) view[c] = lanes::negate(dir[c]);
+    for (int c = 0; c < 3; ++c) view[c] = negate(dir[c]);
     for (std::size_t k = 0; k < light_count; ++k) {
       const Light& light = sc.lights[k];
       PhongLanes::LightLanes& out = p.light[k];
       V to[3], l[3];
       for (int c = 0; c < 3; ++c) to[c] = V::broadcast(light.position[c]) - above[c];
-      const V dist = sqrt(lanes::dot(to, to, zero));
+      const V dist = sqrt(dot_dpps(to, to, zero));
       const V range = V::broadcast(light.range);
       const M in_range = dist < range;
       out.in_range = mlib::bits(in_range) & active;
       for (int c = 0; c < 3; ++c) l[c] = to[c] / dist;
       const V l_w = zero / dist;  // L's w: NaN where d is 0 or NaN
       const V l_w_n_w = l_w * zero;
-      const V n_dot_l = lanes::dot(ns, l, l_w_n_w);
-      const M lit = in_range & (lanes::dot(l, ng, l_w_n_w) > zero) & (n_dot_l > zero);
+      const V n_dot_l = dot_dpps(ns, l, l_w_n_w);
+      const M lit = in_range & (dot_dpps(l, ng, l_w_n_w) > zero) & (n_dot_l > zero);
       out.lit = mlib::bits(lit) & active;
       if (!out.lit) continue;
       V term[3], r[3];
       for (int c = 0; c < 3; ++c) term[c] = kd[c] * n_dot_l;
       const V twice = V::broadcast(2.0f) * n_dot_l;
       for (int c = 0; c < 3; ++c) r[c] = twice * ns[c] - l[c];
-      const V r_dot_v = lanes::dot(r, view, zero);
+      const V r_dot_v = dot_dpps(r, view, zero);
       const M shiny = lit & shiny_material & (r_dot_v > zero);
       if (const unsigned bits = mlib::bits(shiny) & active) {
         alignas(64) float base[kHitLanes], power[kHitLanes] = {};
@@ -401,14 +393,14 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
         for (int c = 0; c < 3; ++c) term[c] = select(shiny, term[c] + ks[c] * pw, term[c]);
       }
       V weighted[3];
+      const vec4 radiance = light.radiance();
       if (light.has_range()) {
         const V x = dist / range, x2 = x * x, w = V::broadcast(1.0f) - x2 * x2;
         const V window = w * w;
         for (int c = 0; c < 3; ++c)
-          weighted[c] = weight[c] * (term[c] * (V::broadcast(light.radiance()[c]) * window));
+          weighted[c] = weight[c] * (term[c] * (V::broadcast(radiance[c]) * window));
       } else {
-        for (int c = 0; c < 3; ++c)
-          weighted[c] = weight[c] * (term[c] * V::broadcast(light.radiance()[c]));
+        for (int c = 0; c < 3; ++c) weighted[c] = weight[c] * (term[c] * V::broadcast(radiance[c]));
       }
       lanes::store3(weighted, out.term);
       lanes::store3(l, out.dir);
@@ -425,7 +417,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
     p.reflects = mlib::bits((kr > zero) & heavy) & active;
     if (p.reflects) {
       // reflect(dir, ns) = dir - 2 ns (ns·dir)
-      const V d = lanes::dot(ns, dir, ns_w_dir_w);
+      const V d = dot_dpps(ns, dir, ns_w_dir_w);
       V r[3];
       for (int c = 0; c < 3; ++c) r[c] = dir[c] - (V::broadcast(2.0f) * ns[c]) * d;
       lanes::store3(r, p.reflect_dir);

@@ -104,12 +104,12 @@ struct LightCounts {
   std::uint64_t in_lanes = 0;    // shading points shaded in SIMD lanes (phong_lanes.h)
   LightCounts& operator+=(const LightCounts& o) {
     points += o.points;
-    in_lanes += o.in_lanes;
     considered += o.considered;
     in_range += o.in_range;
     unoccluded += o.unoccluded;
     lists += o.lists;
     list_entries += o.list_entries;
+    in_lanes += o.in_lanes;
     return *this;
   }
 };
