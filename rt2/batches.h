@@ -102,12 +102,38 @@ struct Batches {
   std::vector<std::uint32_t> found;     // one query's answer
   std::vector<float> depth;             // clustered culling: per ray, its hit's depth
   std::vector<Aabb> cluster_bounds;     // clustered culling: per slice
-  std::vector<ShadowRay> shadows;
+  std::vector<ShadowRay> shadows;  // appended through add_shadow only
+  // The shadow batch's shape, kept by add_shadow: whether its lights never decrease along
+  // it (one light, say: its runs are then its groups by light, and trace_shadows need not
+  // sort), the ends of its runs of one light, and whether some ray is proven unoccluded.
+  bool shadows_grouped = true, shadows_some_unoccluded = false;
+  std::vector<std::uint32_t> shadow_run_ends;
   std::vector<float> passed;              // per shadow ray: the light that passes
   std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
   std::vector<std::uint32_t> light_begin;
   std::vector<LightRay> light_rays;
   std::vector<vec4> colors;
+
+  // Empties the shadow batch.
+  void clear_shadows() {
+    shadows.clear();
+    shadow_run_ends.clear();
+    shadows_grouped = true;
+    shadows_some_unoccluded = false;
+  }
+  // Appends a shadow ray towards light `light` (its other fields are the caller's to set).
+  MLIB_INLINE ShadowRay& add_shadow(std::uint32_t light, bool unoccluded) {
+    if (!shadows.empty()) {
+      const std::uint32_t last = shadows.back().light;
+      shadows_grouped = shadows_grouped && last <= light;
+      if (last != light) shadow_run_ends.push_back(static_cast<std::uint32_t>(shadows.size()));
+    }
+    shadows_some_unoccluded = shadows_some_unoccluded || unoccluded;
+    ShadowRay& sr = shadows.emplace_back();
+    sr.light = light;
+    sr.unoccluded = unoccluded;
+    return sr;
+  }
 };
 
 inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
@@ -172,15 +198,13 @@ MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, con
 MLIB_INLINE void push_shadow_ray(Batches& b, const vec4& origin, const vec4& l, float dist,
                                  const vec4& weight, const vec4& term, const Light& light,
                                  std::uint32_t li, std::uint32_t sample, bool unoccluded) {
-  ShadowRay& sr = b.shadows.emplace_back();
+  ShadowRay& sr = b.add_shadow(li, unoccluded);
   sr.ray.org = origin;
   sr.ray.dir = l;
   sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
                                                 : light.radiance()));
   sr.distance = dist;
   sr.sample = sample;
-  sr.light = li;
-  sr.unoccluded = unoccluded;
 }
 
 // The texture coordinates (u, v) at a surface point, and how many texture units one world

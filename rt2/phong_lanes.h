@@ -443,14 +443,12 @@ inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, Batch
     counts.lights.in_range += (lt.in_range & bit) != 0;
     if (!(lt.lit & bit)) continue;
     ++counts.shadow;
-    ShadowRay& sr = b.shadows.emplace_back();
+    ShadowRay& sr = b.add_shadow(static_cast<std::uint32_t>(k), false);
     sr.ray.org = above;
     sr.ray.dir = vec4(lt.dir[0][l], lt.dir[1][l], lt.dir[2][l], lt.dir_w[l]);
     sr.term = vec4(lt.term[0][l], lt.term[1][l], lt.term[2][l]);
     sr.distance = lt.distance[l];
     sr.sample = sample;
-    sr.light = static_cast<std::uint32_t>(k);
-    sr.unoccluded = false;
   }
   if (p.reflects & bit) {
     PathRay& pr = b.next.emplace_back();

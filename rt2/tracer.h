@@ -366,51 +366,15 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
 // (many small lights, each reaching a few points) has them traced one by one.
 inline constexpr std::size_t kMinShadowPacket = 4;
 
-template <bool Watertight>
-void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b,
-                   TraversalCounts& walk) {
-  const std::size_t n = b.shadows.size();
-  b.passed.resize(n);
-  if (!st.shadows) {
-    std::fill(b.passed.begin(), b.passed.end(), 1.0f);
-    return;
-  }
-  // Rays proven unoccluded pass whole (what their walk would return); the others are traced.
-  b.to_trace.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (b.shadows[i].unoccluded)
-      b.passed[i] = 1.0f;
-    else
-      b.to_trace.push_back(static_cast<std::uint32_t>(i));
-  }
+// b.by_light: the rays of b.to_trace grouped by light, stable; b.light_begin: the ends of
+// the groups. A counting sort over the lights when there are fewer lights than rays, else
+// a sort of the rays (whose cost does not grow with the scene's light count).
+inline void group_by_light(const CompiledScene& sc, Batches& b) {
   const std::size_t m = b.to_trace.size();
-  const auto one = [&](std::uint32_t i) {
-    b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
-                                            b.shadows[i].distance, &walk);
-  };
-  if (!st.packets) {
-    for (const std::uint32_t i : b.to_trace) one(i);
-    return;
-  }
-  // b.by_light: the rays to trace grouped by light, stable; b.light_begin: the ends of the
-  // groups. A batch already grouped stays as it is; otherwise a counting sort over the
-  // lights when there are fewer lights than rays, else a sort of the rays (whose cost does
-  // not grow with the scene's light count).
   b.by_light.resize(m);
   b.light_begin.clear();
   const auto light_of = [&b](std::size_t k) { return b.shadows[b.to_trace[k]].light; };
-  std::size_t grouped = m > 0 ? 1 : 0;  // how far the batch is already grouped
-  while (grouped < m && light_of(grouped - 1) <= light_of(grouped)) ++grouped;
-  if (grouped == m) {
-    // Lights never decrease along the batch (one light, say): the groups are its runs. (A
-    // count per ray would wait on the previous ray's store to the same counter.)
-    for (std::size_t k = 0; k < m; ++k) {
-      b.by_light[k] = b.to_trace[k];
-      if (k + 1 == m || light_of(k + 1) != light_of(k))
-        b.light_begin.push_back(static_cast<std::uint32_t>(k + 1));
-    }
-  } else if (sc.lights.size() <= m) {
-    b.light_begin.clear();
+  if (sc.lights.size() <= m) {
     b.light_begin.resize(sc.lights.size() + 1);  // zeros
     for (const std::uint32_t i : b.to_trace) ++b.light_begin[b.shadows[i].light + 1];
     for (std::size_t l = 1; l < b.light_begin.size(); ++l)
@@ -422,8 +386,7 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
     // std::sort of plain integers would be instantiated here and in the portable code
     // alike, and the linker could keep this instruction set's copy for both.)
     b.light_rays.resize(m);
-    for (std::size_t k = 0; k < m; ++k)
-      b.light_rays[k] = {b.shadows[b.to_trace[k]].light, b.to_trace[k]};
+    for (std::size_t k = 0; k < m; ++k) b.light_rays[k] = {light_of(k), b.to_trace[k]};
     std::sort(b.light_rays.begin(), b.light_rays.end(), [](const LightRay& x, const LightRay& y) {
       return x.light < y.light || (x.light == y.light && x.ray < y.ray);
     });
@@ -431,6 +394,48 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
     for (std::size_t k = 1; k <= m; ++k)
       if (k == m || b.light_rays[k].light != b.light_rays[k - 1].light)
         b.light_begin.push_back(static_cast<std::uint32_t>(k));
+  }
+}
+
+template <bool Watertight>
+void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b,
+                   TraversalCounts& walk) {
+  const std::size_t n = b.shadows.size();
+  b.passed.resize(n);
+  if (!st.shadows) {
+    std::fill(b.passed.begin(), b.passed.end(), 1.0f);
+    return;
+  }
+  const auto one = [&](std::uint32_t i) {
+    b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
+                                            b.shadows[i].distance, &walk);
+  };
+  // Rays proven unoccluded pass whole (what their walk would return); the others are traced
+  // (b.to_trace), with packets in groups by light (b.by_light, ending at b.light_begin).
+  // A batch with no proven ray whose lights never decrease (one light, say) is its own
+  // grouping: its runs, which add_shadow kept.
+  if (b.shadows_grouped && !b.shadows_some_unoccluded) {
+    if (!st.packets) {
+      for (std::size_t i = 0; i < n; ++i) one(static_cast<std::uint32_t>(i));
+      return;
+    }
+    b.by_light.resize(n);
+    for (std::size_t i = 0; i < n; ++i) b.by_light[i] = static_cast<std::uint32_t>(i);
+    b.light_begin = b.shadow_run_ends;
+    if (n > 0) b.light_begin.push_back(static_cast<std::uint32_t>(n));
+  } else {
+    b.to_trace.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (b.shadows[i].unoccluded)
+        b.passed[i] = 1.0f;
+      else
+        b.to_trace.push_back(static_cast<std::uint32_t>(i));
+    }
+    if (!st.packets) {
+      for (const std::uint32_t i : b.to_trace) one(i);
+      return;
+    }
+    group_by_light(sc, b);
   }
   std::size_t run = 0;
   for (const std::uint32_t run_end : b.light_begin) {
@@ -485,7 +490,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   for (int depth = 0; !b.rays.empty(); ++depth) {
     const bool primary = depth == 0;
     b.next.clear();
-    b.shadows.clear();
+    b.clear_shadows();
     // 2. intersect: the primary batch in its packets, the others 16 rays at a time
     b.hits.resize(b.rays.size());
     if (primary) {
