@@ -35,6 +35,8 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
     if (const Material& m = c.materials[i]; m.model == Shading::pbr)
       c.pbr_surfaces[i] = pbr_surface(m.base_color, m.metallic, m.roughness, m.transmission);
   c.times.brdf_table_ms = ms_since(t);
+  c.plain_phong.resize(c.materials.size());
+  for (std::size_t i = 0; i < c.materials.size(); ++i) c.plain_phong[i] = c.materials[i].plain_phong();
   t = Clock::now();
   c.textures = TextureSet(scene.textures);
   c.times.textures_ms = ms_since(t);

@@ -30,6 +30,8 @@ struct CompiledScene {
   // Per material, its physically based surface (brdf.h) when it is pbr and has no texture
   // (the same at every point: prepared once here instead of per shaded point).
   std::vector<PbrSurface> pbr_surfaces;
+  // Per material, Material::plain_phong() (1 or 0): read per hit by the shading lanes.
+  std::vector<std::uint8_t> plain_phong;
   std::vector<Light> lights;             // where they are this frame
   LightBvh light_bvh;                    // over `lights`' spheres of influence
   std::vector<LightPath> light_paths;    // where move_lights takes each light

@@ -62,6 +62,10 @@ struct Material {
   std::uint32_t metallic_texture = kNoTexture;
 
   bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
+  // Phong without a texture or transparency: the shading lanes (phong_lanes.h) take its hits.
+  bool plain_phong() const {
+    return model == Shading::phong && base_color_texture == kNoTexture && !(transparency > 0.0f);
+  }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.
   // Always inline: the render kernels, compiled per instruction set, call it per hit, and
   // an out-of-line copy would be one symbol with wide and baseline bodies.

@@ -41,13 +41,6 @@ inline constexpr int kHitLanes = mlib::kWidestLanes;
 inline constexpr std::size_t kMaxLaneLights = 8;
 inline constexpr std::size_t kMaxLaneMaterials = std::size_t(1) << 24;  // exact as floats
 
-// Whether a hit on material m takes the lanes (see above; the scene-wide conditions are
-// the caller's).
-inline bool lane_shadable(const Material& m) {
-  return m.model == Shading::phong && m.base_color_texture == kNoTexture &&
-         !(m.transparency > 0.0f);
-}
-
 // One pass's inputs (gather_lanes) and results.
 struct PhongLanes {
   using F = float[kHitLanes];
@@ -111,18 +104,19 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
   namespace simd = mlib::simd;
   const Accel& acc = sc.accel;
   p.clear_kinds();
-  for (int l = 0; l < kHitLanes; ++l) p.material[l] = -1.0f;  // no material: lanes left out
   unsigned active = 0;
   std::uint32_t kind_index[kHitLanes];
   for (int l = 0; l < kHitLanes; ++l) {
     const std::size_t i = first + std::size_t(l);
-    if (i >= end || !b.hits[i].found()) continue;
-    const PrimRef prim = b.hits[i].prim;
+    // A hit on a plain Phong material (CompiledScene::plain_phong) takes lane l; without
+    // branches on the material, whose kinds mix in a batch.
+    const PrimRef prim = i < end ? b.hits[i].prim : kNoHit;
+    p.material[l] = -1.0f;  // no material: lanes left out
+    if (prim == kNoHit) continue;
     const std::uint32_t material = acc.material_of(prim);
-    if (!lane_shadable(sc.materials[material])) continue;
-    const unsigned bit = 1u << l;
+    const unsigned bit = unsigned(sc.plain_phong[material]) << l;
     active |= bit;
-    p.material[l] = float(material);
+    p.material[l] = bit ? float(material) : -1.0f;
     p.material_index[l] = material;
     kind_index[l] = prim_index(prim);
     const PrimRef tag = prim_tag(prim);
