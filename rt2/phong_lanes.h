@@ -421,22 +421,31 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
   }
 }
 
+// What a pass over the lanes of `active` adds to the counters (shade and spawn count each
+// hit as they go; the lanes count a pass at once).
+inline void count_lanes(const CompiledScene& sc, const PhongLanes& p, unsigned active,
+                        RayCounts& counts) {
+  const unsigned n = static_cast<unsigned>(std::popcount(active));
+  counts.lights.points += n;
+  counts.lights.in_lanes += n;
+  counts.lights.considered += std::uint64_t(n) * sc.lights.size();
+  for (std::size_t k = 0; k < sc.lights.size(); ++k) {
+    counts.lights.in_range += static_cast<unsigned>(std::popcount(p.light[k].in_range));
+    counts.shadow += static_cast<unsigned>(std::popcount(p.light[k].lit));
+  }
+  counts.reflection += static_cast<unsigned>(std::popcount(p.reflects));
+}
+
 // Lane l's results into the batch, as shade and spawn add them for one hit.
-inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, Batches& b,
-                      RayCounts& counts) {
+inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, Batches& b) {
   const unsigned bit = 1u << l;
   const std::uint32_t sample = p.sample[l];
   b.colors[sample] += vec4(p.ambient_term[0][l], p.ambient_term[1][l], p.ambient_term[2][l]);
   const std::size_t light_count = sc.lights.size();
-  ++counts.lights.points;
-  ++counts.lights.in_lanes;
-  counts.lights.considered += light_count;
   const vec4 above(p.above[0][l], p.above[1][l], p.above[2][l]);
   for (std::size_t k = 0; k < light_count; ++k) {
     const PhongLanes::LightLanes& lt = p.light[k];
-    counts.lights.in_range += (lt.in_range & bit) != 0;
     if (!(lt.lit & bit)) continue;
-    ++counts.shadow;
     ShadowRay& sr = b.add_shadow(static_cast<std::uint32_t>(k), false);
     sr.ray.org = above;
     sr.ray.dir = vec4(lt.dir[0][l], lt.dir[1][l], lt.dir[2][l], lt.dir_w[l]);
@@ -451,7 +460,6 @@ inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, Batch
                       p.reflect_dir_w[l]);
     for (int c = 0; c < 3; ++c) pr.rgb[c] = p.reflect_weight[c][l];
     pr.sample = sample;
-    ++counts.reflection;
   }
 }
 

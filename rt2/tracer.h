@@ -333,11 +333,14 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
     unsigned shaded = 0;  // the lanes shaded in SIMD
     if (in_lanes) {
       shaded = gather_lanes(sc, b, first, end, phong);
-      if (shaded) shade_lanes(sc, st, depth, shaded, phong);
+      if (shaded) {
+        shade_lanes(sc, st, depth, shaded, phong);
+        count_lanes(sc, phong, shaded, counts);
+      }
     }
     for (std::size_t i = first; i < end; ++i) {
       if (shaded >> (i - first) & 1) {
-        emit_lane(sc, phong, int(i - first), b, counts);
+        emit_lane(sc, phong, int(i - first), b);
         continue;
       }
       const PathRay& pr = b.rays[i];
