@@ -96,36 +96,10 @@ MLIB_INLINE void put4(simd::f4 v0, simd::f4 v1, simd::f4 v2, simd::f4 v3,
 
 }  // namespace lanes
 
-// Gathers the hits of rays [first, end) of the batch (at most kHitLanes) that take the
-// lanes into p, four lanes at a time (a transpose of four vec4s per quantity); returns
-// their lanes. Lanes past `end`, and the fields of other kinds, hold copies of a valid lane.
-inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::size_t first,
-                             std::size_t end, PhongLanes& p) {
+// The rays and hits of lanes [first, end) of the batch into p (lanes past the batch repeat
+// its last ray), four lanes at a time.
+inline void gather_rays(const Batches& b, std::size_t first, std::size_t end, PhongLanes& p) {
   namespace simd = mlib::simd;
-  const Accel& acc = sc.accel;
-  p.clear_kinds();
-  unsigned active = 0;
-  std::uint32_t kind_index[kHitLanes];
-  for (int l = 0; l < kHitLanes; ++l) {
-    const std::size_t i = first + std::size_t(l);
-    // A hit on a plain Phong material (CompiledScene::plain_phong) takes lane l; without
-    // branches on the material, whose kinds mix in a batch.
-    const PrimRef prim = i < end ? b.hits[i].prim : kNoHit;
-    p.material[l] = -1.0f;  // no material: lanes left out
-    if (prim == kNoHit) continue;
-    const std::uint32_t material = acc.material_of(prim);
-    const unsigned bit = unsigned(sc.plain_phong[material]) << l;
-    active |= bit;
-    p.material[l] = bit ? float(material) : -1.0f;
-    p.material_index[l] = material;
-    kind_index[l] = prim_index(prim);
-    const PrimRef tag = prim_tag(prim);
-    p.triangles |= tag == kTriangleTag ? bit : 0u;
-    p.spheres |= tag == kSphereTag ? bit : 0u;
-    p.planes |= tag == kPlaneTag ? bit : 0u;
-  }
-  if (!active) return 0;
-  // Rays and hits (lanes past the batch repeat its last ray).
   for (int j = 0; j < kHitLanes / 4; ++j) {
     const PathRay* r[4];
     const Hit* h[4];
@@ -144,6 +118,82 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
     lanes::put4(simd::load_xyz0(&h[0]->t), simd::load_xyz0(&h[1]->t), simd::load_xyz0(&h[2]->t),
                 simd::load_xyz0(&h[3]->t), p.t, p.u, p.v, j);
   }
+}
+
+// Gathers the hits of rays [first, end) of the batch (at most kHitLanes) that take the
+// lanes into p, four lanes at a time (a transpose of four vec4s per quantity), or, when
+// every ray hit one primitive, its data broadcast; returns their lanes. Lanes past `end`,
+// and the fields of other kinds, hold copies of a valid lane.
+inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::size_t first,
+                             std::size_t end, PhongLanes& p) {
+  namespace simd = mlib::simd;
+  const Accel& acc = sc.accel;
+  p.clear_kinds();
+  const int n = static_cast<int>(end - first);
+  const Hit* hits = b.hits.data() + first;
+  // Every lane on one primitive (a floor, a sphere in view: most passes of a frame): its
+  // material and data once, broadcast.
+  const PrimRef prim0 = hits[0].prim;
+  bool uniform = prim0 != kNoHit;
+  for (int l = 1; l < n; ++l) uniform &= hits[l].prim == prim0;
+  if (uniform) {
+    const std::uint32_t material = acc.material_of(prim0);
+    if (!sc.plain_phong[material]) return 0;
+    const unsigned active = (1u << n) - 1;  // n <= kHitLanes <= 16
+    for (int l = 0; l < kHitLanes; ++l) {
+      p.material[l] = l < n ? float(material) : -1.0f;
+      p.material_index[l] = material;
+    }
+    const std::uint32_t i = prim_index(prim0);
+    using V = mlib::vfloat<kHitLanes>;
+    const auto fill3 = [](const vec4& x, float (&a)[3][kHitLanes]) {
+      for (int c = 0; c < 3; ++c) V::broadcast(x[c]).store(a[c]);
+    };
+    switch (prim_tag(prim0)) {
+      case kTriangleTag: {
+        const Triangle& t = acc.tris[i];
+        p.triangles = active;
+        fill3(t.v0, p.v0), fill3(t.v1, p.v1), fill3(t.v2, p.v2), fill3(t.n, p.tri_n);
+        if (!acc.tri_normals.empty())
+          fill3(acc.tri_normals[i][0], p.n0), fill3(acc.tri_normals[i][1], p.n1),
+              fill3(acc.tri_normals[i][2], p.n2);
+        break;
+      }
+      case kSphereTag:
+        p.spheres = active;
+        fill3(acc.spheres[i].center, p.center);
+        V::broadcast(acc.spheres[i].radius).store(p.radius);
+        break;
+      default:
+        p.planes = active;
+        fill3(acc.planes[i].n, p.plane_n);
+        V::broadcast(acc.planes[i].d).store(p.plane_d);
+        break;
+    }
+    gather_rays(b, first, end, p);
+    return active;
+  }
+  unsigned active = 0;
+  std::uint32_t kind_index[kHitLanes];
+  for (int l = 0; l < kHitLanes; ++l) {
+    // A hit on a plain Phong material (CompiledScene::plain_phong) takes lane l; without
+    // branches on the material, whose kinds mix in a batch.
+    const PrimRef prim = l < n ? hits[l].prim : kNoHit;
+    p.material[l] = -1.0f;  // no material: lanes left out
+    if (prim == kNoHit) continue;
+    const std::uint32_t material = acc.material_of(prim);
+    const unsigned bit = unsigned(sc.plain_phong[material]) << l;
+    active |= bit;
+    p.material[l] = bit ? float(material) : -1.0f;
+    p.material_index[l] = material;
+    kind_index[l] = prim_index(prim);
+    const PrimRef tag = prim_tag(prim);
+    p.triangles |= tag == kTriangleTag ? bit : 0u;
+    p.spheres |= tag == kSphereTag ? bit : 0u;
+    p.planes |= tag == kPlaneTag ? bit : 0u;
+  }
+  if (!active) return 0;
+  gather_rays(b, first, end, p);
   // Each kind's data (other lanes read the kind's first lane).
   const auto each_quad = [&](unsigned kind, auto&& f) {
     const int any = std::countr_zero(kind);

@@ -172,7 +172,8 @@ Scene inside_mirror(bool shell) {
 // computes: the image is the same bits with them on or off, on every instruction set, with
 // both triangle tests, supersampling and deep mirrors; with lights up to the lanes' limit
 // (and beyond it, where every hit takes the one-hit step) and none; on glass, whose hits
-// take the one-hit step between lanes of the same pass; at the numbers' edges; from behind.
+// take the one-hit step between lanes of the same pass; at the numbers' edges; from behind;
+// where a pass's hits are all on one primitive.
 TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) {
   Scene glass = test::glass_scene();
   Material g = glass.materials[glass.sphere_materials.back()];
@@ -198,6 +199,11 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
       set_light_count(s, lights);
     cases.push_back({"built-in", s, lights, lights <= 8});
   }
+  // Every lane of most passes on one primitive (the lanes take its data once), with a plane
+  // whose D is not 0.
+  Scene lowered = make_default_scene();
+  lowered.planes[0].d = 0.1f;
+  cases.push_back({"built-in, floor lowered", lowered, 1, true});
   for (const Case& c : cases)
     for (Isa isa : test::runnable_isas())
       for (bool watertight : {false, true}) {
