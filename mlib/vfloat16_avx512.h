@@ -17,6 +17,8 @@ namespace mlib {
 struct vbool16 {
   __mmask16 m;
   static constexpr int size = 16;
+  // Lane i set where bit i of `b` is.
+  MLIB_INLINE static vbool16 from_bits(unsigned b) { return {static_cast<__mmask16>(b)}; }
 };
 
 struct vfloat16 {
@@ -27,6 +29,8 @@ struct vfloat16 {
   MLIB_INLINE static vfloat16 broadcast(float s) { return {_mm512_set1_ps(s)}; }
   MLIB_INLINE static vfloat16 load(const float* p) { return {_mm512_load_ps(p)}; }  // 64-byte aligned
   MLIB_INLINE void store(float* p) const { _mm512_store_ps(p, v); }
+  MLIB_INLINE static vfloat16 loadu(const void* p) { return {_mm512_loadu_ps(p)}; }  // any alignment
+  MLIB_INLINE void storeu(void* p) const { _mm512_storeu_ps(p, v); }
 };
 
 MLIB_INLINE vfloat16 operator+(vfloat16 a, vfloat16 b) { return {_mm512_add_ps(a.v, b.v)}; }
@@ -80,6 +84,13 @@ MLIB_INLINE vfloat16 select(vbool16 m, vfloat16 if_true, vfloat16 if_false) {
   return {_mm512_mask_blend_ps(m.m, if_false.v, if_true.v)};
 }
 MLIB_INLINE unsigned bits(vbool16 m) { return static_cast<unsigned>(m.m); }
+
+// The lanes of `m` set, in order, moved to the lowest lanes (the lanes above them hold
+// anything). Bits are moved, not computed: NaN payloads and signed zeros pass as they are.
+// The same in every vfloat file.
+MLIB_INLINE vfloat16 compress(vfloat16 a, unsigned m) {
+  return {_mm512_maskz_compress_ps(static_cast<__mmask16>(m), a.v)};
+}
 
 // The smallest / largest lane, in every lane (as the SSE versions, NaN lanes not expected).
 MLIB_INLINE vfloat16 reduce_min(vfloat16 a) { return {_mm512_set1_ps(_mm512_reduce_min_ps(a.v))}; }

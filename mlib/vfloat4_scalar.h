@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "mlib/simd.h"  // MLIB_INLINE
 
@@ -15,6 +16,9 @@ namespace mlib {
 struct vbool4 {
   bool m[4];
   static constexpr int size = 4;
+  MLIB_INLINE static vbool4 from_bits(unsigned b) {  // lane i set where bit i of b is
+    return {{(b & 1) != 0, (b & 2) != 0, (b & 4) != 0, (b & 8) != 0}};
+  }
 };
 
 struct vfloat4 {
@@ -24,6 +28,12 @@ struct vfloat4 {
 
   MLIB_INLINE static vfloat4 broadcast(float s) { return {{s, s, s, s}}; }
   MLIB_INLINE static vfloat4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+  MLIB_INLINE static vfloat4 loadu(const void* p) {  // any alignment
+    vfloat4 r;
+    std::memcpy(r.v, p, sizeof r.v);
+    return r;
+  }
+  MLIB_INLINE void storeu(void* p) const { std::memcpy(p, v, sizeof v); }
   MLIB_INLINE void store(float* p) const {
     for (int i = 0; i < 4; ++i) p[i] = v[i];
   }
@@ -99,6 +109,15 @@ MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
 MLIB_INLINE unsigned bits(vbool4 m) {
   return unsigned(m.m[0]) | unsigned(m.m[1]) << 1 | unsigned(m.m[2]) << 2 | unsigned(m.m[3]) << 3;
 }
+// The lanes of `m` set, in order, moved to the lowest lanes (see vfloat16_avx512.h).
+MLIB_INLINE vfloat4 compress(vfloat4 a, unsigned m) {
+  vfloat4 r = vfloat4::broadcast(a.v[0]);
+  int k = 0;
+  for (int i = 0; i < 4; ++i)
+    if (m >> i & 1) r.v[k++] = a.v[i];
+  return r;
+}
+
 MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {
   const vfloat4 b{{a.v[1], a.v[0], a.v[3], a.v[2]}};
   const vfloat4 m = min(a, b);

@@ -12,6 +12,9 @@
 
 #include <smmintrin.h>  // SSE4.1
 
+#include <array>
+#include <cstdint>
+
 #include "mlib/simd.h"  // MLIB_INLINE
 
 namespace mlib {
@@ -19,6 +22,12 @@ namespace mlib {
 struct vbool4 {
   __m128 m;
   static constexpr int size = 4;
+  // Lane i set where bit i of `b` is.
+  MLIB_INLINE static vbool4 from_bits(unsigned b) {
+    const __m128i bit = _mm_setr_epi32(1, 2, 4, 8);
+    const __m128i set = _mm_and_si128(_mm_set1_epi32(static_cast<int>(b)), bit);
+    return {_mm_castsi128_ps(_mm_cmpeq_epi32(set, bit))};
+  }
 };
 
 struct vfloat4 {
@@ -29,6 +38,8 @@ struct vfloat4 {
   MLIB_INLINE static vfloat4 broadcast(float s) { return {_mm_set1_ps(s)}; }
   MLIB_INLINE static vfloat4 load(const float* p) { return {_mm_load_ps(p)}; }  // 16-byte aligned
   MLIB_INLINE void store(float* p) const { _mm_store_ps(p, v); }
+  MLIB_INLINE static vfloat4 loadu(const void* p) { return {_mm_loadu_ps(static_cast<const float*>(p))}; }  // any alignment
+  MLIB_INLINE void storeu(void* p) const { _mm_storeu_ps(static_cast<float*>(p), v); }
   // From and to simd.h's four floats (vec4's lanes), without a trip through memory.
   MLIB_INLINE static vfloat4 from_f4(simd::f4 a) { return {a}; }
   MLIB_INLINE simd::f4 to_f4() const { return v; }
@@ -84,6 +95,33 @@ MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
 }
 // Bit i set when lane i of m is.
 MLIB_INLINE unsigned bits(vbool4 m) { return static_cast<unsigned>(_mm_movemask_ps(m.m)); }
+
+namespace detail {
+// Per 4-bit mask, the byte shuffle that moves the lanes it selects, in order, to the lowest
+// lanes (then lane 0's bytes again).
+constexpr std::array<std::array<std::uint8_t, 16>, 16> compress4_table() {
+  std::array<std::array<std::uint8_t, 16>, 16> t{};
+  for (unsigned m = 0; m < 16; ++m) {
+    unsigned k = 0;
+    for (unsigned i = 0; i < 4; ++i)
+      if (m >> i & 1) {
+        for (unsigned b = 0; b < 4; ++b) t[m][4 * k + b] = static_cast<std::uint8_t>(4 * i + b);
+        ++k;
+      }
+    for (; k < 4; ++k)
+      for (unsigned b = 0; b < 4; ++b) t[m][4 * k + b] = static_cast<std::uint8_t>(b);
+  }
+  return t;
+}
+inline constexpr std::array<std::array<std::uint8_t, 16>, 16> kCompress4 = compress4_table();
+}  // namespace detail
+
+// The lanes of `m` set, in order, moved to the lowest lanes (see vfloat16_avx512.h).
+MLIB_INLINE vfloat4 compress(vfloat4 a, unsigned m) {
+  const __m128i shuffle =
+      _mm_loadu_si128(reinterpret_cast<const __m128i*>(detail::kCompress4[m & 0xFu].data()));
+  return {_mm_castsi128_ps(_mm_shuffle_epi8(_mm_castps_si128(a.v), shuffle))};
+}
 
 // The smallest lane, in every lane (NaN lanes are not expected: callers select them away).
 MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {

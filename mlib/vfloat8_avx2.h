@@ -5,6 +5,9 @@
 
 #include <immintrin.h>
 
+#include <array>
+#include <cstdint>
+
 #include "mlib/simd.h"  // MLIB_INLINE
 
 #if !defined(__AVX2__)
@@ -16,6 +19,12 @@ namespace mlib {
 struct vbool8 {
   __m256 m;
   static constexpr int size = 8;
+  // Lane i set where bit i of `b` is.
+  MLIB_INLINE static vbool8 from_bits(unsigned b) {
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256i set = _mm256_and_si256(_mm256_set1_epi32(static_cast<int>(b)), bit);
+    return {_mm256_castsi256_ps(_mm256_cmpeq_epi32(set, bit))};
+  }
 };
 
 struct vfloat8 {
@@ -26,6 +35,8 @@ struct vfloat8 {
   MLIB_INLINE static vfloat8 broadcast(float s) { return {_mm256_set1_ps(s)}; }
   MLIB_INLINE static vfloat8 load(const float* p) { return {_mm256_load_ps(p)}; }  // 32-byte aligned
   MLIB_INLINE void store(float* p) const { _mm256_store_ps(p, v); }
+  MLIB_INLINE static vfloat8 loadu(const void* p) { return {_mm256_loadu_ps(static_cast<const float*>(p))}; }
+  MLIB_INLINE void storeu(void* p) const { _mm256_storeu_ps(static_cast<float*>(p), v); }
 };
 
 MLIB_INLINE vfloat8 operator+(vfloat8 a, vfloat8 b) { return {_mm256_add_ps(a.v, b.v)}; }
@@ -73,6 +84,28 @@ MLIB_INLINE vfloat8 select(vbool8 m, vfloat8 if_true, vfloat8 if_false) {
   return {_mm256_blendv_ps(if_false.v, if_true.v, m.m)};
 }
 MLIB_INLINE unsigned bits(vbool8 m) { return static_cast<unsigned>(_mm256_movemask_ps(m.m)); }
+
+namespace detail {
+// Per 8-bit mask, the lanes it selects in order, a lane index per nibble (then zeros).
+constexpr std::array<std::uint32_t, 256> compress8_table() {
+  std::array<std::uint32_t, 256> t{};
+  for (unsigned m = 0; m < 256; ++m) {
+    unsigned k = 0;
+    for (unsigned i = 0; i < 8; ++i)
+      if (m >> i & 1) t[m] |= i << (4 * k++);
+  }
+  return t;
+}
+inline constexpr std::array<std::uint32_t, 256> kCompress8 = compress8_table();
+}  // namespace detail
+
+// The lanes of `m` set, in order, moved to the lowest lanes (see vfloat16_avx512.h).
+MLIB_INLINE vfloat8 compress(vfloat8 a, unsigned m) {
+  const __m256i nibbles = _mm256_set1_epi32(static_cast<int>(detail::kCompress8[m & 0xFFu]));
+  const __m256i idx = _mm256_and_si256(
+      _mm256_srlv_epi32(nibbles, _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28)), _mm256_set1_epi32(7));
+  return {_mm256_permutevar8x32_ps(a.v, idx)};
+}
 
 MLIB_INLINE vfloat8 reduce_min(vfloat8 a) {
   __m256 m = _mm256_min_ps(a.v, _mm256_permute_ps(a.v, _MM_SHUFFLE(2, 3, 0, 1)));

@@ -121,6 +121,29 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
       expect(std::bit_cast<std::uint32_t>(out[i]) == want, "step_ulps", i);
     }
   }
+  // compress against the loop it stands for, under every mask (all of them up to 8 lanes,
+  // a spread of them for 16), bits moved as they are (NaN payloads, -0); from_bits gives
+  // the mask's lanes; loadu / storeu at an odd address.
+  alignas(64) float src[N];
+  for (int i = 0; i < N; ++i)
+    src[i] = i % 4 == 1 ? -0.0f : (i % 4 == 3 ? std::bit_cast<float>(0x7FC00000u + unsigned(i)) : float(i + 1));
+  const unsigned all = (1u << N) - 1;
+  const auto check_compress = [&](unsigned m) {
+    compress(V::load(src), m).store(out);
+    int packed = 0;
+    for (int i = 0; i < N; ++i)
+      if (m >> i & 1)
+        expect(std::bit_cast<std::uint32_t>(out[packed++]) == std::bit_cast<std::uint32_t>(src[i]),
+               "compress", i);
+    expect(mlib::bits(V::bool_type::from_bits(m)) == m, "from_bits", int(m & 0xFF));
+  };
+  for (unsigned m = 0; m < all; m += N <= 8 ? 1 : 97) check_compress(m);
+  check_compress(all);
+  alignas(64) float buffer[N + 1];
+  for (int i = 0; i <= N; ++i) buffer[i] = float(-i);
+  const V u = V::loadu(buffer + 1);
+  u.storeu(buffer);  // overlapping, one float down
+  for (int i = 0; i < N; ++i) expect(buffer[i] == float(-i - 1), "loadu / storeu", i);
   return failures;
 }
 
