@@ -1,5 +1,6 @@
 // rt2/batches.h — the data the render kernel's stages pass along (tracer.h): rays of the
-// ray tree, their hits' surface points, the shadow rays and light lists of a batch.
+// ray tree, their hits' surface points, the shadow rays and light lists of a batch. Rays
+// and shadow rays are kept as columns (columns.h), for the SIMD stages.
 //
 // Compiled per instruction set like the kernel (the code lives in rt2::RT2_ISA).
 #pragma once
@@ -13,6 +14,7 @@
 #include "rt2/accel.h"
 #include "rt2/light.h"
 #include "rt2/cluster_visibility.h"
+#include "rt2/columns.h"
 #include "rt2/offset.h"
 #include "rt2/ray.h"
 #include "rt2/render.h"
@@ -20,10 +22,8 @@
 namespace rt2::RT2_ISA {
 namespace detail {
 
-// A ray of the ray tree, and whose sample it adds to: 48 bytes (one with the path's length
-// and its own depth and kind was 64, and the thesis's headline frame 3.5 % slower: the
-// batches are streamed through at every stage). A ray's depth is its batch's, and its kind
-// is counted when it is spawned.
+// A ray of the ray tree, and whose sample it adds to, as one-ray code reads it from a batch
+// (PathRays). A ray's depth is its batch's, and its kind is counted when it is spawned.
 struct PathRay {
   Ray ray;
   // The product of the reflection / transmission factors along the path, per channel: Kr
@@ -32,27 +32,153 @@ struct PathRay {
   float rgb[3];
   std::uint32_t sample;  // index into the block's sample colours
   MLIB_INLINE vec4 weight() const { return mlib::load_xyz(rgb); }
-  MLIB_INLINE void set_weight(const vec4& w) {
-    rgb[0] = w[0];
-    rgb[1] = w[1];
-    rgb[2] = w[2];
-  }
 };
-static_assert(sizeof(PathRay) == 48);
+
+// The rays of a batch, PathRay's fields as columns (columns.h): operator[] gives one ray
+// whole; the packet queries and the shading lanes read the columns.
+class PathRays {
+ public:
+  enum Column { kOrg = 0, kDir = 4, kWeight = 8, kSample = 11, kColumns = 12 };  // x y z w / r g b
+
+  std::size_t size() const { return c_.size(); }
+  bool empty() const { return c_.empty(); }
+  void clear() { c_.clear(); }
+
+  MLIB_INLINE PathRay operator[](std::size_t i) const {
+    PathRay r;
+    r.ray = ray(i);
+    for (int k = 0; k < 3; ++k) r.rgb[k] = c_.f(kWeight + k)[i];
+    r.sample = c_.u(kSample)[i];
+    return r;
+  }
+  MLIB_INLINE Ray ray(std::size_t i) const {
+    return Ray(vec4(c_.f(kOrg)[i], c_.f(kOrg + 1)[i], c_.f(kOrg + 2)[i], c_.f(kOrg + 3)[i]),
+               vec4(c_.f(kDir)[i], c_.f(kDir + 1)[i], c_.f(kDir + 2)[i], c_.f(kDir + 3)[i]));
+  }
+  // Appends a ray (the weight's w is not kept).
+  MLIB_INLINE void push(const vec4& org, const vec4& dir, const vec4& weight, std::uint32_t sample) {
+    const std::size_t i = c_.extend(1);
+    for (int a = 0; a < 4; ++a) {
+      c_.f(kOrg + a)[i] = org[a];
+      c_.f(kDir + a)[i] = dir[a];
+    }
+    for (int k = 0; k < 3; ++k) c_.f(kWeight + k)[i] = weight[k];
+    c_.u(kSample)[i] = sample;
+  }
+
+  // Appends n <= 4 rays of weight 1 from `org` (a row of a packet of primary rays): their
+  // directions dir[0 ... n - 1] and samples sample[0 ... n - 1], four lanes at a time.
+  MLIB_INLINE void push_row(const vec4& org, const vec4 (&dir)[4], const std::uint32_t (&sample)[4],
+                            int n) {
+    namespace simd = mlib::simd;
+    c_.reserve(c_.size() + 4);
+    const std::size_t i = c_.size();
+    simd::f4 x, y, z, w;
+    simd::transpose4(org.m128(), org.m128(), org.m128(), org.m128(), x, y, z, w);
+    simd::store(c_.f(kOrg) + i, x), simd::store(c_.f(kOrg + 1) + i, y);
+    simd::store(c_.f(kOrg + 2) + i, z), simd::store(c_.f(kOrg + 3) + i, w);
+    simd::transpose4(dir[0].m128(), dir[1].m128(), dir[2].m128(), dir[3].m128(), x, y, z, w);
+    simd::store(c_.f(kDir) + i, x), simd::store(c_.f(kDir + 1) + i, y);
+    simd::store(c_.f(kDir + 2) + i, z), simd::store(c_.f(kDir + 3) + i, w);
+    for (int k = 0; k < 3; ++k) simd::store(c_.f(kWeight + k) + i, simd::set1(1.0f));
+    for (int k = 0; k < 4; ++k) c_.u(kSample)[i + std::size_t(k)] = sample[k];
+    c_.extend(std::size_t(n));
+  }
+
+  RayColumns rays() const {
+    return {{c_.f(kOrg), c_.f(kOrg + 1), c_.f(kOrg + 2), c_.f(kOrg + 3)},
+            {c_.f(kDir), c_.f(kDir + 1), c_.f(kDir + 2), c_.f(kDir + 3)}};
+  }
+  Columns<kColumns>& columns() { return c_; }
+  const Columns<kColumns>& columns() const { return c_; }
+
+ private:
+  Columns<kColumns> c_;
+};
 
 // Whether a ray of weight w is worth tracing: its largest channel exceeds `min_weight`.
 MLIB_INLINE bool heavy_enough(const vec4& w, float min_weight) {
   return mlib::hmax3(w) > min_weight;
 }
 
-// A shadow ray, with the light's unshadowed term at the point it leaves.
-struct ShadowRay {
-  Ray ray;
-  vec4 term;  // weight x (Kd (L·N) + Ks (R·V)^n) x light radiance
-  float distance;
-  std::uint32_t sample;
-  std::uint32_t light;  // index into CompiledScene::lights
-  bool unoccluded;      // proven to pass whole (cluster_visibility.h): not traced
+// The shadow rays of a batch as columns (columns.h): each ray with the light's unshadowed
+// term at the point it leaves (weight x (Kd (L·N) + Ks (R·V)^n) x light radiance), the
+// distance to the light, its sample, its light (index into CompiledScene::lights) and
+// whether it is proven to pass whole (cluster_visibility.h: then not traced).
+//
+// The batch keeps its shape as rays are added: whether its lights never decrease along it
+// (one light, say: its runs are then its groups by light, and trace_shadows need not sort),
+// the ends of its runs of one light, and whether some ray is proven unoccluded.
+class ShadowRays {
+ public:
+  enum Column {
+    kOrg = 0, kDir = 4, kTerm = 8, kDistance = 11, kSample = 12, kLight = 13, kUnoccluded = 14,
+    kColumns = 15
+  };
+
+  std::size_t size() const { return c_.size(); }
+  bool empty() const { return c_.empty(); }
+  void clear() {
+    c_.clear();
+    run_ends_.clear();
+    grouped_ = true;
+    some_unoccluded_ = false;
+  }
+
+  // Appends a shadow ray (the term's w is not kept).
+  MLIB_INLINE void push(const vec4& org, const vec4& dir, float distance, const vec4& term,
+                        std::uint32_t light, std::uint32_t sample, bool unoccluded) {
+    const std::size_t i = extend(light, 1, unoccluded);
+    for (int a = 0; a < 4; ++a) {
+      c_.f(kOrg + a)[i] = org[a];
+      c_.f(kDir + a)[i] = dir[a];
+    }
+    for (int k = 0; k < 3; ++k) c_.f(kTerm + k)[i] = term[k];
+    c_.f(kDistance)[i] = distance;
+    c_.u(kSample)[i] = sample;
+    c_.u(kLight)[i] = light;
+    c_.u(kUnoccluded)[i] = unoccluded;
+  }
+  // Adds n rays to `light` whose columns the caller fills (kLight and kUnoccluded
+  // included); returns the index of the first.
+  MLIB_INLINE std::size_t extend(std::uint32_t light, std::size_t n, bool unoccluded) {
+    if (!c_.empty() && n > 0) {
+      const std::uint32_t last = c_.u(kLight)[c_.size() - 1];
+      grouped_ = grouped_ && last <= light;
+      if (last != light) run_ends_.push_back(static_cast<std::uint32_t>(c_.size()));
+    }
+    some_unoccluded_ = some_unoccluded_ || (unoccluded && n > 0);
+    return c_.extend(n);
+  }
+
+  MLIB_INLINE Ray ray(std::size_t i) const {
+    return Ray(vec4(c_.f(kOrg)[i], c_.f(kOrg + 1)[i], c_.f(kOrg + 2)[i], c_.f(kOrg + 3)[i]),
+               vec4(c_.f(kDir)[i], c_.f(kDir + 1)[i], c_.f(kDir + 2)[i], c_.f(kDir + 3)[i]));
+  }
+  MLIB_INLINE vec4 term(std::size_t i) const {
+    return vec4(c_.f(kTerm)[i], c_.f(kTerm + 1)[i], c_.f(kTerm + 2)[i]);
+  }
+  float distance(std::size_t i) const { return c_.f(kDistance)[i]; }
+  const float* distances() const { return c_.f(kDistance); }
+  std::uint32_t sample(std::size_t i) const { return c_.u(kSample)[i]; }
+  std::uint32_t light(std::size_t i) const { return c_.u(kLight)[i]; }
+  bool unoccluded(std::size_t i) const { return c_.u(kUnoccluded)[i] != 0; }
+
+  RayColumns rays() const {
+    return {{c_.f(kOrg), c_.f(kOrg + 1), c_.f(kOrg + 2), c_.f(kOrg + 3)},
+            {c_.f(kDir), c_.f(kDir + 1), c_.f(kDir + 2), c_.f(kDir + 3)}};
+  }
+  Columns<kColumns>& columns() { return c_; }
+
+  // The shape (see above).
+  bool grouped() const { return grouped_; }
+  bool some_unoccluded() const { return some_unoccluded_; }
+  const std::vector<std::uint32_t>& run_ends() const { return run_ends_; }
+
+ private:
+  Columns<kColumns> c_;
+  bool grouped_ = true, some_unoccluded_ = false;
+  std::vector<std::uint32_t> run_ends_;
 };
 
 // What shading needs to know about a hit.
@@ -89,7 +215,7 @@ struct LightRay {
 
 // The batches of one thread, reused from block to block (no allocation once grown).
 struct Batches {
-  std::vector<PathRay> rays, next;
+  PathRays rays, next;
   std::vector<std::uint32_t> packet_begin;  // the primary batch's packets (generate)
   std::vector<Hit> hits;                    // per ray of `rays`
   std::vector<SurfacePoint> points;         // per ray of `rays` that hit
@@ -102,38 +228,13 @@ struct Batches {
   std::vector<std::uint32_t> found;     // one query's answer
   std::vector<float> depth;             // clustered culling: per ray, its hit's depth
   std::vector<Aabb> cluster_bounds;     // clustered culling: per slice
-  std::vector<ShadowRay> shadows;  // appended through add_shadow only
-  // The shadow batch's shape, kept by add_shadow: whether its lights never decrease along
-  // it (one light, say: its runs are then its groups by light, and trace_shadows need not
-  // sort), the ends of its runs of one light, and whether some ray is proven unoccluded.
-  bool shadows_grouped = true, shadows_some_unoccluded = false;
-  std::vector<std::uint32_t> shadow_run_ends;
+  ShadowRays shadows;
   std::vector<float> passed;              // per shadow ray: the light that passes
   std::vector<std::uint32_t> by_light;    // shadow rays grouped by light, in batch order
   std::vector<std::uint32_t> light_begin;
   std::vector<LightRay> light_rays;
   std::vector<vec4> colors;
 
-  // Empties the shadow batch.
-  void clear_shadows() {
-    shadows.clear();
-    shadow_run_ends.clear();
-    shadows_grouped = true;
-    shadows_some_unoccluded = false;
-  }
-  // Appends a shadow ray towards light `light` (its other fields are the caller's to set).
-  MLIB_INLINE ShadowRay& add_shadow(std::uint32_t light, bool unoccluded) {
-    if (!shadows.empty()) {
-      const std::uint32_t last = shadows.back().light;
-      shadows_grouped = shadows_grouped && last <= light;
-      if (last != light) shadow_run_ends.push_back(static_cast<std::uint32_t>(shadows.size()));
-    }
-    shadows_some_unoccluded = shadows_some_unoccluded || unoccluded;
-    ShadowRay& sr = shadows.emplace_back();
-    sr.light = light;
-    sr.unoccluded = unoccluded;
-    return sr;
-  }
 };
 
 inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
@@ -176,16 +277,10 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
   return s;
 }
 
-// Appends a child of `parent` to the next batch, field by field (a whole temporary copied
-// in would be read back as one wide load from narrower stores: a store-forwarding stall),
-// and counts it by kind.
+// Appends a child of `parent` to the next batch, and counts it by kind.
 MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, const vec4& weight,
                                const PathRay& parent, RayKind kind, RayCounts& counts) {
-  PathRay& pr = b.next.emplace_back();
-  pr.ray.org = org;
-  pr.ray.dir = dir;
-  pr.set_weight(weight);
-  pr.sample = parent.sample;
+  b.next.push(org, dir, weight, parent.sample);
   counts.reflection += kind == RayKind::reflection;
   counts.refraction += kind == RayKind::refraction;
 }
@@ -193,18 +288,13 @@ MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, con
 // Appends a shadow ray from `origin` towards `light` (index li), unit direction l, `dist`
 // away, carrying weight x (term x the light's radiance and range window), `term` being the
 // unshadowed contribution per unit radiance (in that order, as before: the same bits).
-// Field by field: a whole temporary copied in would be read back as one wide load from
-// narrower stores (a store-forwarding stall, 14 % of a frame).
 MLIB_INLINE void push_shadow_ray(Batches& b, const vec4& origin, const vec4& l, float dist,
                                  const vec4& weight, const vec4& term, const Light& light,
                                  std::uint32_t li, std::uint32_t sample, bool unoccluded) {
-  ShadowRay& sr = b.add_shadow(li, unoccluded);
-  sr.ray.org = origin;
-  sr.ray.dir = l;
-  sr.term = weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
-                                                : light.radiance()));
-  sr.distance = dist;
-  sr.sample = sample;
+  b.shadows.push(origin, l, dist,
+                 weight * (term * (light.has_range() ? light.radiance() * range_window(light, dist)
+                                                     : light.radiance())),
+                 li, sample, unoccluded);
 }
 
 // The texture coordinates (u, v) at a surface point, and how many texture units one world

@@ -45,8 +45,7 @@ inline constexpr std::size_t kMaxLaneMaterials = std::size_t(1) << 24;  // exact
 struct PhongLanes {
   using F = float[kHitLanes];
   using F3 = float[3][kHitLanes];
-  // the ray and its hit
-  alignas(64) F3 org, dir, weight;
+  // the hit (the ray is read from the batch's columns)
   alignas(64) F t, u, v;
   // per primitive kind (the other lanes hold a copy of one of its lanes)
   alignas(64) F3 v0, v1, v2, tri_n;   // triangles: vertices, unnormalised normal
@@ -60,7 +59,6 @@ struct PhongLanes {
   // material take its values together)
   alignas(64) F material;
   std::uint32_t material_index[kHitLanes];
-  std::uint32_t sample[kHitLanes];
   // results
   alignas(64) F3 above, ambient_term, reflect_dir, reflect_weight;
   alignas(64) float reflect_dir_w[kHitLanes];
@@ -96,25 +94,13 @@ MLIB_INLINE void put4(simd::f4 v0, simd::f4 v1, simd::f4 v2, simd::f4 v3,
 
 }  // namespace lanes
 
-// The rays and hits of lanes [first, end) of the batch into p (lanes past the batch repeat
-// its last ray), four lanes at a time.
-inline void gather_rays(const Batches& b, std::size_t first, std::size_t end, PhongLanes& p) {
+// The hits of lanes [first, end) of the batch into p (lanes past the batch repeat its last
+// hit), four lanes at a time.
+inline void gather_hits(const Batches& b, std::size_t first, std::size_t end, PhongLanes& p) {
   namespace simd = mlib::simd;
   for (int j = 0; j < kHitLanes / 4; ++j) {
-    const PathRay* r[4];
     const Hit* h[4];
-    for (int k = 0; k < 4; ++k) {
-      const std::size_t i = std::min(first + std::size_t(4 * j + k), end - 1);
-      r[k] = &b.rays[i];
-      h[k] = &b.hits[i];
-      p.sample[4 * j + k] = r[k]->sample;
-    }
-    lanes::put4(r[0]->ray.org.m128(), r[1]->ray.org.m128(), r[2]->ray.org.m128(),
-                r[3]->ray.org.m128(), p.org, j);
-    lanes::put4(r[0]->ray.dir.m128(), r[1]->ray.dir.m128(), r[2]->ray.dir.m128(),
-                r[3]->ray.dir.m128(), p.dir, j);
-    lanes::put4(simd::load_xyz0(r[0]->rgb), simd::load_xyz0(r[1]->rgb),
-                simd::load_xyz0(r[2]->rgb), simd::load_xyz0(r[3]->rgb), p.weight, j);
+    for (int k = 0; k < 4; ++k) h[k] = &b.hits[std::min(first + std::size_t(4 * j + k), end - 1)];
     lanes::put4(simd::load_xyz0(&h[0]->t), simd::load_xyz0(&h[1]->t), simd::load_xyz0(&h[2]->t),
                 simd::load_xyz0(&h[3]->t), p.t, p.u, p.v, j);
   }
@@ -170,7 +156,7 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
         V::broadcast(acc.planes[i].d).store(p.plane_d);
         break;
     }
-    gather_rays(b, first, end, p);
+    gather_hits(b, first, end, p);
     return active;
   }
   unsigned active = 0;
@@ -193,7 +179,7 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
     p.planes |= tag == kPlaneTag ? bit : 0u;
   }
   if (!active) return 0;
-  gather_rays(b, first, end, p);
+  gather_hits(b, first, end, p);
   // Each kind's data (other lanes read the kind's first lane).
   const auto each_quad = [&](unsigned kind, auto&& f) {
     const int any = std::countr_zero(kind);
@@ -287,17 +273,21 @@ MLIB_INLINE V cell_parity(V x) {
 
 }  // namespace lanes
 
-// The pass over the lanes of `active` (filled by gather_lanes): p's results, for a
-// scene whose every hit considers all of its sc.lights.size() <= kMaxLaneLights lights.
+// The pass over the lanes of `active` (filled by gather_lanes) for rays first ... first +
+// kHitLanes - 1 of `rays`: p's results, for a scene whose every hit considers all of its
+// sc.lights.size() <= kMaxLaneLights lights.
 inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int depth,
-                        unsigned active, PhongLanes& p) {
+                        unsigned active, const PathRays& rays, std::size_t first, PhongLanes& p) {
   using lanes::V;
   using lanes::M;
   const V zero = V::broadcast(0.0f);
   V org[3], dir[3], weight[3];
-  lanes::load3(p.org, org);
-  lanes::load3(p.dir, dir);
-  lanes::load3(p.weight, weight);
+  const auto& columns = rays.columns();
+  for (int c = 0; c < 3; ++c) {
+    org[c] = V::loadu(columns.f(PathRays::kOrg + c) + first);
+    dir[c] = V::loadu(columns.f(PathRays::kDir + c) + first);
+    weight[c] = V::loadu(columns.f(PathRays::kWeight + c) + first);
+  }
   const V t = V::load(p.t), u = V::load(p.u), v = V::load(p.v);
   // The surface point: p, ng, ns (surface_at) per kind, then chosen per lane.
   V pos[3], ng[3], ns[3];
@@ -486,30 +476,73 @@ inline void count_lanes(const CompiledScene& sc, const PhongLanes& p, unsigned a
   counts.reflection += static_cast<unsigned>(std::popcount(p.reflects));
 }
 
-// Lane l's results into the batch, as shade and spawn add them for one hit.
-inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, Batches& b) {
+// Lane l's results into the batch, as shade and spawn add them for one hit (`sample`: its
+// ray's).
+inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, std::uint32_t sample,
+                      Batches& b) {
   const unsigned bit = 1u << l;
-  const std::uint32_t sample = p.sample[l];
   b.colors[sample] += vec4(p.ambient_term[0][l], p.ambient_term[1][l], p.ambient_term[2][l]);
   const std::size_t light_count = sc.lights.size();
   const vec4 above(p.above[0][l], p.above[1][l], p.above[2][l]);
   for (std::size_t k = 0; k < light_count; ++k) {
     const PhongLanes::LightLanes& lt = p.light[k];
     if (!(lt.lit & bit)) continue;
-    ShadowRay& sr = b.add_shadow(static_cast<std::uint32_t>(k), false);
-    sr.ray.org = above;
-    sr.ray.dir = vec4(lt.dir[0][l], lt.dir[1][l], lt.dir[2][l], lt.dir_w[l]);
-    sr.term = vec4(lt.term[0][l], lt.term[1][l], lt.term[2][l]);
-    sr.distance = lt.distance[l];
-    sr.sample = sample;
+    b.shadows.push(above, vec4(lt.dir[0][l], lt.dir[1][l], lt.dir[2][l], lt.dir_w[l]),
+                   lt.distance[l], vec4(lt.term[0][l], lt.term[1][l], lt.term[2][l]),
+                   static_cast<std::uint32_t>(k), sample, false);
   }
-  if (p.reflects & bit) {
-    PathRay& pr = b.next.emplace_back();
-    pr.ray.org = above;
-    pr.ray.dir = vec4(p.reflect_dir[0][l], p.reflect_dir[1][l], p.reflect_dir[2][l],
-                      p.reflect_dir_w[l]);
-    for (int c = 0; c < 3; ++c) pr.rgb[c] = p.reflect_weight[c][l];
-    pr.sample = sample;
+  if (p.reflects & bit)
+    b.next.push(above,
+                vec4(p.reflect_dir[0][l], p.reflect_dir[1][l], p.reflect_dir[2][l],
+                     p.reflect_dir_w[l]),
+                vec4(p.reflect_weight[0][l], p.reflect_weight[1][l], p.reflect_weight[2][l]),
+                sample);
+}
+
+// Every lane's shadow and reflected rays appended at once, a vector per column, the lanes
+// that have one moved together (mlib::compress) in lane order: what emit_lane appends lane
+// after lane when the pass's other rays append nothing (misses) and there is at most one
+// light (with more, emit_lane takes each ray's lights in turn). `samples`: the rays'
+// sample column at the pass's first ray. The ambient terms are the caller's to add.
+inline void emit_lanes(const CompiledScene& sc, const PhongLanes& p, const std::uint32_t* samples,
+                       Batches& b) {
+  using lanes::V;
+  const V sample = V::loadu(samples), zero = V::broadcast(0.0f);
+  // n of the lanes of `mask` from `from` (kHitLanes floats) into column c of `to` at `at`.
+  const auto append = [](auto& to, std::size_t at, int c, V from, unsigned mask) {
+    compress(from, mask).storeu(to.f(c) + at);
+  };
+  const auto append3 = [&](auto& to, std::size_t at, int c, const float (&from)[3][kHitLanes],
+                           unsigned mask) {
+    for (int k = 0; k < 3; ++k) append(to, at, c + k, V::load(from[k]), mask);
+  };
+  if (!sc.lights.empty() && p.light[0].lit) {
+    const PhongLanes::LightLanes& lt = p.light[0];
+    const unsigned n = static_cast<unsigned>(std::popcount(lt.lit));
+    auto& to = b.shadows.columns();
+    to.reserve(to.size() + kHitLanes);
+    const std::size_t at = b.shadows.extend(0, n, false);
+    append3(to, at, ShadowRays::kOrg, p.above, lt.lit);
+    zero.storeu(to.f(ShadowRays::kOrg + 3) + at);
+    append3(to, at, ShadowRays::kDir, lt.dir, lt.lit);
+    append(to, at, ShadowRays::kDir + 3, V::load(lt.dir_w), lt.lit);
+    append3(to, at, ShadowRays::kTerm, lt.term, lt.lit);
+    append(to, at, ShadowRays::kDistance, V::load(lt.distance), lt.lit);
+    append(to, at, ShadowRays::kSample, sample, lt.lit);
+    zero.storeu(to.u(ShadowRays::kLight) + at);        // light 0
+    zero.storeu(to.u(ShadowRays::kUnoccluded) + at);   // traced
+  }
+  if (p.reflects) {
+    const unsigned n = static_cast<unsigned>(std::popcount(p.reflects));
+    auto& to = b.next.columns();
+    to.reserve(to.size() + kHitLanes);
+    const std::size_t at = to.extend(n);
+    append3(to, at, PathRays::kOrg, p.above, p.reflects);
+    zero.storeu(to.f(PathRays::kOrg + 3) + at);
+    append3(to, at, PathRays::kDir, p.reflect_dir, p.reflects);
+    append(to, at, PathRays::kDir + 3, V::load(p.reflect_dir_w), p.reflects);
+    append3(to, at, PathRays::kWeight, p.reflect_weight, p.reflects);
+    append(to, at, PathRays::kSample, sample, p.reflects);
   }
 }
 

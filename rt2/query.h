@@ -35,13 +35,13 @@ using TriangleTest = std::conditional_t<Watertight, WatertightTriangleTest, Fast
 template <bool Watertight>
 struct PacketTestFor {
   FastPacketTest<kRayLanes> test;
-  PacketTestFor(const PacketRays<kWidth>& pr, const Ray*, PacketMask) : test{{pr.org, pr.dir}} {}
+  PacketTestFor(const PacketRays<kWidth>& pr, PacketMask) : test{{pr.org, pr.dir}} {}
 };
 template <>
 struct PacketTestFor<true> {
   WatertightPacketTest<kRayLanes> test;
-  PacketTestFor(const PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes)
-      : test(pr.org, pr.dir, rays, lanes) {}
+  PacketTestFor(const PacketRays<kWidth>& pr, PacketMask lanes)
+      : test(pr.org, pr.dir, [&pr](int l) { return pr.ray(l); }, lanes) {}
 };
 
 // Whether any coordinate of the ray is NaN: such a ray hits nothing (and would otherwise
@@ -113,10 +113,11 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
 inline constexpr int kMinPacketRays = 4;
 
 // Loads the rays of `lanes` without a NaN coordinate into pr (which such a ray hits
-// nothing) and returns their lanes.
-inline PacketMask load_finite(PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes) {
-  const PacketMask finite = pr.load(rays, lanes);
-  return finite == lanes || finite == 0 ? finite : pr.load(rays, finite);
+// nothing) and returns their lanes; load(pr, lanes) loads rays (PacketRays::load).
+template <class Load>
+inline PacketMask load_finite(PacketRays<kWidth>& pr, PacketMask lanes, Load&& load) {
+  const PacketMask finite = load(pr, lanes);
+  return finite == lanes || finite == 0 ? finite : load(pr, finite);
 }
 
 // Rays c ... c + kRayLanes - 1 of a loaded packet.
@@ -140,12 +141,11 @@ inline bool spheres_in_one_leaf(const Accel& acc) {
 // closest_plane_or_sphere for each ray of `lanes` of a packet loaded into pr (hits[l].t is
 // the bound on entry), bit for bit, kRayLanes rays at a time.
 inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kWidth>& pr,
-                                           const Ray* rays, PacketMask lanes, float t_min,
-                                           Hit* hits) {
+                                           PacketMask lanes, float t_min, Hit* hits) {
   if (acc.planes.empty() && acc.spheres.empty()) return;
   if (!spheres_in_one_leaf(acc) || !pr.w_zero) {
     for (PacketMask m = lanes; m; m &= m - 1)
-      closest_plane_or_sphere(acc, rays[std::countr_zero(m)], t_min, hits[std::countr_zero(m)]);
+      closest_plane_or_sphere(acc, pr.ray(std::countr_zero(m)), t_min, hits[std::countr_zero(m)]);
     return;
   }
   using V = mlib::vfloat<kRayLanes>;
@@ -187,7 +187,7 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
       for (unsigned m = m_doubled; m; m &= m - 1) {  // the one-ray test's double branch
         const int l = std::countr_zero(m);
         float t1;
-        if (intersect(sp, rays[c + l], t_min, best[l], t1)) {
+        if (intersect(sp, pr.ray(c + l), t_min, best[l], t1)) {
           best[l] = t1;
           hits[c + l].prim = kSphereTag | i;
         }
@@ -220,8 +220,7 @@ inline std::array<PacketMask, 8> octant_groups(const PacketRays<kWidth>& pr, Pac
 // octant with at least kMinPacketRays rays. walk(packet_rays, group) walks one packet;
 // returns the lanes walked, the caller takes the others one by one.
 template <class Walk>
-inline PacketMask walk_as_packets(PacketRays<kWidth>& pr, const Ray* rays, PacketMask lanes,
-                                  Walk&& walk) {
+inline PacketMask walk_as_packets(PacketRays<kWidth>& pr, PacketMask lanes, Walk&& walk) {
   if (std::popcount(lanes) < kMinPacketRays) return 0;
   if (pr.make_frustum()) {
     walk(pr, lanes);
@@ -233,7 +232,7 @@ inline PacketMask walk_as_packets(PacketRays<kWidth>& pr, const Ray* rays, Packe
   for (const PacketMask group : octant_groups(pr, lanes)) {
     if (std::popcount(group) < kMinPacketRays) continue;
     PacketRays<kWidth> sub;
-    sub.load(rays, group);
+    sub.load(pr, group);
     if (!sub.make_frustum()) continue;
     walk(sub, group);
     walked |= group;
@@ -241,37 +240,37 @@ inline PacketMask walk_as_packets(PacketRays<kWidth>& pr, const Ray* rays, Packe
   return walked;
 }
 
-// closest_hit for each ray of a packet: hits[l] = closest_hit(acc, rays[l], t_min,
-// t_max[l]) for the lanes l of `lanes` (bit for bit the same), planes and spheres tested
-// kRayLanes rays at a time, the triangles walked as one packet when the rays allow it
-// (packet_traverse.h). Only the lanes of `lanes` of rays, t_max and hits are read or
-// written.
+// closest_hit for each ray of a packet loaded into pr: hits[l] = closest_hit(acc, ray l,
+// t_min, t_max[l]) for the lanes l of `lanes` (bit for bit the same; `finite`: those
+// without a NaN coordinate, load_finite's answer), planes and spheres tested kRayLanes rays
+// at a time, the triangles walked as one packet when the rays allow it
+// (packet_traverse.h). Only the lanes of `lanes` of t_max and hits are read or written.
 template <bool Watertight>
-inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
-                               const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
-  PacketRays<kWidth> pr;
-  const PacketMask finite = load_finite(pr, rays, lanes);
+inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketMask lanes,
+                               PacketMask finite, float t_min, const float* t_max, Hit* hits,
+                               TraversalCounts* counts) {
   for (PacketMask m = lanes; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     hits[l] = Hit{};
     if (finite >> l & 1) hits[l].t = t_max[l];
   }
   if (finite) {
-    closest_plane_or_sphere_packet(acc, pr, rays, finite, t_min, hits);
+    closest_plane_or_sphere_packet(acc, pr, finite, t_min, hits);
     const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
     if (bvh.root == kNoChild) {
       // no triangles
     } else {
       const PacketMask walked =
-          walk_as_packets(pr, rays, finite, [&](const PacketRays<kWidth>& p, PacketMask group) {
-            const PacketTestFor<Watertight> pt(p, rays, group);
+          walk_as_packets(pr, finite, [&](const PacketRays<kWidth>& p, PacketMask group) {
+            const PacketTestFor<Watertight> pt(p, group);
             closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), p, pt.test, group, t_min,
                                             hits, counts);
           });
       for (PacketMask m = finite & ~walked; m; m &= m - 1) {
         const int l = std::countr_zero(m);
-        closest_triangle<kWidth>(bvh, acc.blocks.data(), rays[l],
-                                 TriangleTest<Watertight>(rays[l]), t_min, hits[l], counts);
+        const Ray ray = pr.ray(l);
+        closest_triangle<kWidth>(bvh, acc.blocks.data(), ray, TriangleTest<Watertight>(ray), t_min,
+                                 hits[l], counts);
       }
     }
   }
@@ -279,6 +278,28 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
     const int l = std::countr_zero(m);
     if (!hits[l].found()) hits[l].t = kInfinity;
   }
+}
+
+// closest_hit_loaded for rays[l], l in `lanes`.
+template <bool Watertight>
+inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
+                               const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
+  PacketRays<kWidth> pr;
+  const PacketMask finite =
+      load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
+  closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, t_max, hits, counts);
+}
+
+// closest_hit_loaded for the rays first + l of columns, l in `lanes` (the columns are read
+// at first ... first + kPacketSize - 1).
+template <bool Watertight>
+inline void closest_hit_packet(const Accel& acc, const RayColumns& rays, std::size_t first,
+                               PacketMask lanes, float t_min, const float* t_max, Hit* hits,
+                               TraversalCounts* counts = nullptr) {
+  PacketRays<kWidth> pr;
+  const PacketMask finite = load_finite(
+      pr, lanes, [&rays, first](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, first, m); });
+  closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, t_max, hits, counts);
 }
 
 // Whether a plane or a sphere (every surface opaque) lies on `ray` in (t_min, t_max).
@@ -318,7 +339,9 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
                                   float t_min, const float* t_max,
                                   TraversalCounts* counts = nullptr) {
   PacketRays<kWidth> pr;  // the frustum bounds the finite rays (a superset of the open ones)
-  PacketMask open = load_finite(pr, rays, lanes), blocked = 0;
+  PacketMask open =
+      load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
+  PacketMask blocked = 0;
   for (PacketMask m = open; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
@@ -327,8 +350,8 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
   if (!open || bvh.root == kNoChild) return blocked;
   const PacketMask walked =
-      walk_as_packets(pr, rays, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
-        const PacketTestFor<Watertight> pt(p, rays, group);
+      walk_as_packets(pr, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
+        const PacketTestFor<Watertight> pt(p, group);
         blocked |= any_triangle_packet<kWidth>(
             bvh, acc.blocks.data(), p, pt.test, group, t_min, t_max,
             [](int, std::uint32_t, float) { return true; }, counts);
@@ -442,15 +465,14 @@ inline float transmittance(const Accel& acc, const std::vector<Material>& materi
 // time, each ray's crossings in the one-ray order; returns the rays an opaque one blocks.
 inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
                                                   const std::vector<Material>& materials,
-                                                  const PacketRays<kWidth>& pr, const Ray* rays,
-                                                  PacketMask lanes, float t_min,
-                                                  const float* t_max, Crossings* c) {
+                                                  const PacketRays<kWidth>& pr, PacketMask lanes,
+                                                  float t_min, const float* t_max, Crossings* c) {
   PacketMask blocked = 0;
   if (acc.planes.empty() && acc.spheres.empty()) return blocked;
   if (!spheres_in_one_leaf(acc) || !pr.w_zero) {
     for (PacketMask m = lanes; m; m &= m - 1) {
       const int l = std::countr_zero(m);
-      if (cross_planes_and_spheres(acc, materials, rays[l], t_min, t_max[l], c[l]))
+      if (cross_planes_and_spheres(acc, materials, pr.ray(l), t_min, t_max[l], c[l]))
         blocked |= PacketMask(1) << l;
     }
     return blocked;
@@ -495,9 +517,10 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
       for (unsigned b = doubled; b; b &= b - 1) {  // the one-ray test's double branch
         const int l = std::countr_zero(b);
         float t, t2;
-        if (!intersect(sp, rays[k + l], t_min, t_max[k + l], t)) continue;
+        const Ray ray = pr.ray(k + l);
+        if (!intersect(sp, ray, t_min, t_max[k + l], t)) continue;
         cross(l, kt);
-        if (open >> l & 1 && intersect(sp, rays[k + l], t, t_max[k + l], t2)) cross(l, kt);
+        if (open >> l & 1 && intersect(sp, ray, t, t_max[k + l], t2)) cross(l, kt);
       }
     }
     blocked |= PacketMask((lanes >> k & ((1u << kRayLanes) - 1)) & ~open) << k;
@@ -505,21 +528,19 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
   return blocked;
 }
 
-// transmittance for each ray of a packet: passed[l] for the lanes l of `lanes`, bit for bit
-// what transmittance gives, planes and spheres tested kRayLanes rays at a time, the triangles
-// walked as one packet when the rays allow it.
+// transmittance for each ray of a packet loaded into pr: passed[l] for the lanes l of
+// `lanes` (`finite`: load_finite's answer), bit for bit what transmittance gives, planes and
+// spheres tested kRayLanes rays at a time, the triangles walked as one packet when the
+// rays allow it.
 template <bool Watertight>
-inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
-                                 const Ray* rays, PacketMask lanes, float t_min,
-                                 const float* t_max, float* passed,
-                                 TraversalCounts* counts = nullptr) {
+inline void transmittance_loaded(const Accel& acc, const std::vector<Material>& materials,
+                                 PacketRays<kWidth>& pr, PacketMask lanes, PacketMask finite,
+                                 float t_min, const float* t_max, float* passed,
+                                 TraversalCounts* counts) {
   Crossings c[kPacketSize];
-  PacketRays<kWidth> pr;
-  const PacketMask finite = load_finite(pr, rays, lanes);
   for (PacketMask m = lanes & ~finite; m; m &= m - 1) passed[std::countr_zero(m)] = 1.0f;
   if (!finite) return;
-  PacketMask blocked = cross_planes_and_spheres_packet(acc, materials, pr, rays, finite, t_min,
-                                                       t_max, c);
+  PacketMask blocked = cross_planes_and_spheres_packet(acc, materials, pr, finite, t_min, t_max, c);
   const PacketMask open = finite & ~blocked;
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
   const auto cross_triangle = [&](int l, std::uint32_t prim) {
@@ -527,15 +548,16 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
   };
   if (open && bvh.root != kNoChild) {
     const PacketMask walked =
-        walk_as_packets(pr, rays, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
-          const PacketTestFor<Watertight> pt(p, rays, group);
+        walk_as_packets(pr, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
+          const PacketTestFor<Watertight> pt(p, group);
           blocked |= any_triangle_packet<kWidth>(
               bvh, acc.blocks.data(), p, pt.test, group, t_min, t_max,
               [&](int l, std::uint32_t prim, float) { return cross_triangle(l, prim); }, counts);
         });
     for (PacketMask m = open & ~walked; m; m &= m - 1) {
       const int l = std::countr_zero(m);
-      if (any_triangle<kWidth>(bvh, acc.blocks.data(), rays[l], TriangleTest<Watertight>(rays[l]),
+      const Ray ray = pr.ray(l);
+      if (any_triangle<kWidth>(bvh, acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                                t_min, t_max[l],
                                [&](std::uint32_t prim, float) { return cross_triangle(l, prim); },
                                counts))
@@ -546,6 +568,31 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
     const int l = std::countr_zero(m);
     passed[l] = blocked >> l & 1 ? 0.0f : c[l].transmittance();
   }
+}
+
+// transmittance_loaded for rays[l], l in `lanes`.
+template <bool Watertight>
+inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
+                                 const Ray* rays, PacketMask lanes, float t_min,
+                                 const float* t_max, float* passed,
+                                 TraversalCounts* counts = nullptr) {
+  PacketRays<kWidth> pr;
+  const PacketMask finite =
+      load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
+  transmittance_loaded<Watertight>(acc, materials, pr, lanes, finite, t_min, t_max, passed, counts);
+}
+
+// transmittance_loaded for the rays first + l of columns, l in `lanes` (the columns are
+// read at first ... first + kPacketSize - 1).
+template <bool Watertight>
+inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
+                                 const RayColumns& rays, std::size_t first, PacketMask lanes,
+                                 float t_min, const float* t_max, float* passed,
+                                 TraversalCounts* counts = nullptr) {
+  PacketRays<kWidth> pr;
+  const PacketMask finite = load_finite(
+      pr, lanes, [&rays, first](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, first, m); });
+  transmittance_loaded<Watertight>(acc, materials, pr, lanes, finite, t_min, t_max, passed, counts);
 }
 
 }  // namespace rt2::RT2_ISA

@@ -27,6 +27,13 @@ struct Ray {
   vec4 at(float t) const { return org + dir * t; }
 };
 
+// Rays as structure of arrays (a batch's columns): component a (x, y, z, w) of ray i's
+// origin at org[a][i], of its direction at dir[a][i].
+struct RayColumns {
+  const float* org[4];
+  const float* dir[4];
+};
+
 // The traversal form: origin, direction and 1/direction (IEEE: ±inf for a zero component,
 // which the slab test handles, see aabb.h). Lane w of inv_dir is 0 so that w lanes of box
 // arithmetic stay 0 rather than 0 * inf.

@@ -141,14 +141,17 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
         float image_x[4], image_y[4];  // per column and row of the packet (Camera::ray)
         for (int j = 0; j < nx; ++j) image_x[j] = cam.image_x(float(gx + j) + o.x, st.width, st.height);
         for (int j = 0; j < ny; ++j) image_y[j] = cam.image_y(float(gy + j) + o.y, st.height);
-        for (int y = gy; y < gy + ny; ++y)
-          for (int x = gx; x < gx + nx; ++x) {
-            PathRay& pr = b.rays.emplace_back();
-            pr.ray = cam.ray_at(image_x[x - gx], image_y[y - gy]);
-            pr.rgb[0] = pr.rgb[1] = pr.rgb[2] = 1.0f;
-            pr.sample = static_cast<std::uint32_t>(((y - block.y0) * bw + x - block.x0) * samples +
+        for (int y = gy; y < gy + ny; ++y) {
+          vec4 dir[4];
+          std::uint32_t sample[4];
+          for (int j = 0; j < 4; ++j) {
+            const int x = gx + std::min(j, nx - 1);  // a short row repeats its last ray
+            dir[j] = cam.ray_at(image_x[x - gx], image_y[y - gy]).dir;
+            sample[j] = static_cast<std::uint32_t>(((y - block.y0) * bw + x - block.x0) * samples +
                                                    k - s0);
           }
+          b.rays.push_row(cam.position(), dir, sample, nx);
+        }
         b.packet_begin.push_back(static_cast<std::uint32_t>(b.rays.size()));
       }
 }
@@ -158,20 +161,19 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
 template <bool Watertight>
 void intersect(const CompiledScene& sc, const RenderSettings& st, std::size_t begin,
                std::size_t end, Batches& b, TraversalCounts& walk) {
-  Ray rays[kPacketSize];
-  float t_max[kPacketSize];
+  static constexpr float kNoBound[kPacketSize] = {kInfinity, kInfinity, kInfinity, kInfinity,
+                                                  kInfinity, kInfinity, kInfinity, kInfinity,
+                                                  kInfinity, kInfinity, kInfinity, kInfinity,
+                                                  kInfinity, kInfinity, kInfinity, kInfinity};
   Hit* hits = b.hits.data() + begin;
   const int n = static_cast<int>(end - begin);
-  for (int l = 0; l < n; ++l) {
-    rays[l] = b.rays[begin + l].ray;
-    t_max[l] = kInfinity;
-  }
   if (st.packets) {
-    closest_hit_packet<Watertight>(sc.accel, rays, (PacketMask(1) << n) - 1, 0.0f, t_max, hits,
-                                   &walk);
+    closest_hit_packet<Watertight>(sc.accel, b.rays.rays(), begin, (PacketMask(1) << n) - 1, 0.0f,
+                                   kNoBound, hits, &walk);
   } else {
     for (int l = 0; l < n; ++l)
-      hits[l] = closest_hit<Watertight>(sc.accel, rays[l], 0.0f, kInfinity, &walk);
+      hits[l] = closest_hit<Watertight>(sc.accel, b.rays.ray(begin + std::size_t(l)), 0.0f,
+                                        kInfinity, &walk);
   }
 }
 
@@ -181,7 +183,7 @@ inline void surface_points(const CompiledScene& sc, Batches& b) {
   b.points.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     if (b.hits[i].found())
-      b.points[i] = surface_at(sc.accel, b.rays[i].ray, b.hits[i], sc.offset_scale);
+      b.points[i] = surface_at(sc.accel, b.rays.ray(i), b.hits[i], sc.offset_scale);
 }
 
 // The depth slice (0 ... slices - 1) of depth z in [near, far]: exponentially spaced when
@@ -327,6 +329,7 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
   const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights &&
                         sc.materials.size() <= kMaxLaneMaterials;
   PhongLanes phong;  // every lane a pass reads, gather_lanes writes
+  const std::uint32_t* samples = b.rays.columns().u(PathRays::kSample);
   const std::size_t n = b.rays.size();
   for (std::size_t first = 0; first < n; first += kHitLanes) {
     const std::size_t end = std::min(first + kHitLanes, n);
@@ -334,16 +337,28 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
     if (in_lanes) {
       shaded = gather_lanes(sc, b, first, end, phong);
       if (shaded) {
-        shade_lanes(sc, st, depth, shaded, phong);
+        shade_lanes(sc, st, depth, shaded, b.rays, first, phong);
         count_lanes(sc, phong, shaded, counts);
       }
     }
+    // With at most one light, when no other ray of the pass appends rays (they all missed),
+    // the lanes' rays are appended a vector at a time (emit_lanes), else lane by lane in
+    // batch order.
+    bool at_once = shaded != 0 && sc.lights.size() <= 1;
+    for (std::size_t i = first; i < end && at_once; ++i)
+      at_once = (shaded >> (i - first) & 1) || !b.hits[i].found();
+    if (at_once) emit_lanes(sc, phong, samples + first, b);
     for (std::size_t i = first; i < end; ++i) {
       if (shaded >> (i - first) & 1) {
-        emit_lane(sc, phong, int(i - first), b);
+        const int l = int(i - first);
+        if (at_once)
+          b.colors[samples[i]] +=
+              vec4(phong.ambient_term[0][l], phong.ambient_term[1][l], phong.ambient_term[2][l]);
+        else
+          emit_lane(sc, phong, l, samples[i], b);
         continue;
       }
-      const PathRay& pr = b.rays[i];
+      const PathRay pr = b.rays[i];
       if (!b.hits[i].found()) {
         b.colors[pr.sample] += pr.weight() * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
                                                                : sc.background);
@@ -376,13 +391,13 @@ inline void group_by_light(const CompiledScene& sc, Batches& b) {
   const std::size_t m = b.to_trace.size();
   b.by_light.resize(m);
   b.light_begin.clear();
-  const auto light_of = [&b](std::size_t k) { return b.shadows[b.to_trace[k]].light; };
+  const auto light_of = [&b](std::size_t k) { return b.shadows.light(b.to_trace[k]); };
   if (sc.lights.size() <= m) {
     b.light_begin.resize(sc.lights.size() + 1);  // zeros
-    for (const std::uint32_t i : b.to_trace) ++b.light_begin[b.shadows[i].light + 1];
+    for (const std::uint32_t i : b.to_trace) ++b.light_begin[b.shadows.light(i) + 1];
     for (std::size_t l = 1; l < b.light_begin.size(); ++l)
       b.light_begin[l] += b.light_begin[l - 1];
-    for (const std::uint32_t i : b.to_trace) b.by_light[b.light_begin[b.shadows[i].light]++] = i;
+    for (const std::uint32_t i : b.to_trace) b.by_light[b.light_begin[b.shadows.light(i)]++] = i;
     // light_begin[l] is now the end of light l's run.
   } else {
     // Sorted by (light, ray): stable by construction. (A sort of a type of this namespace:
@@ -410,26 +425,25 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
     return;
   }
   const auto one = [&](std::uint32_t i) {
-    b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows[i].ray, 0.0f,
-                                            b.shadows[i].distance, &walk);
+    b.passed[i] = transmittance<Watertight>(sc.accel, sc.materials, b.shadows.ray(i), 0.0f,
+                                            b.shadows.distance(i), &walk);
   };
   // Rays proven unoccluded pass whole (what their walk would return); the others are traced
   // (b.to_trace), with packets in groups by light (b.by_light, ending at b.light_begin).
   // A batch with no proven ray whose lights never decrease (one light, say) is its own
-  // grouping: its runs, which add_shadow kept.
-  if (b.shadows_grouped && !b.shadows_some_unoccluded) {
+  // grouping: its runs, which ShadowRays kept as they were added.
+  const bool as_is = b.shadows.grouped() && !b.shadows.some_unoccluded();
+  if (as_is) {
     if (!st.packets) {
       for (std::size_t i = 0; i < n; ++i) one(static_cast<std::uint32_t>(i));
       return;
     }
-    b.by_light.resize(n);
-    for (std::size_t i = 0; i < n; ++i) b.by_light[i] = static_cast<std::uint32_t>(i);
-    b.light_begin = b.shadow_run_ends;
+    b.light_begin = b.shadows.run_ends();
     if (n > 0) b.light_begin.push_back(static_cast<std::uint32_t>(n));
   } else {
     b.to_trace.clear();
     for (std::size_t i = 0; i < n; ++i) {
-      if (b.shadows[i].unoccluded)
+      if (b.shadows.unoccluded(i))
         b.passed[i] = 1.0f;
       else
         b.to_trace.push_back(static_cast<std::uint32_t>(i));
@@ -440,23 +454,30 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
     }
     group_by_light(sc, b);
   }
+  // Packets of up to 16 rays of a run; in a batch traced as it is, a packet's rays are
+  // consecutive and load straight from the columns.
   std::size_t run = 0;
   for (const std::uint32_t run_end : b.light_begin) {
     if (run_end - run < kMinShadowPacket) {
-      for (; run < run_end; ++run) one(b.by_light[run]);
+      for (; run < run_end; ++run) one(as_is ? static_cast<std::uint32_t>(run) : b.by_light[run]);
       continue;
     }
     for (; run < run_end; run += kPacketSize) {
       const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, run_end - run));
+      const PacketMask lanes = (PacketMask(1) << count) - 1;
+      if (as_is) {
+        transmittance_packet<Watertight>(sc.accel, sc.materials, b.shadows.rays(), run, lanes, 0.0f,
+                                         b.shadows.distances() + run, b.passed.data() + run, &walk);
+        continue;
+      }
       Ray rays[kPacketSize];
       float t_max[kPacketSize], passed[kPacketSize];
       for (int l = 0; l < count; ++l) {
-        const ShadowRay& sr = b.shadows[b.by_light[run + l]];
-        rays[l] = sr.ray;
-        t_max[l] = sr.distance;
+        rays[l] = b.shadows.ray(b.by_light[run + l]);
+        t_max[l] = b.shadows.distance(b.by_light[run + l]);
       }
-      transmittance_packet<Watertight>(sc.accel, sc.materials, rays,
-                                       (PacketMask(1) << count) - 1, 0.0f, t_max, passed, &walk);
+      transmittance_packet<Watertight>(sc.accel, sc.materials, rays, lanes, 0.0f, t_max, passed,
+                                       &walk);
       for (int l = 0; l < count; ++l) b.passed[b.by_light[run + l]] = passed[l];
     }
     run = run_end;
@@ -493,7 +514,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   for (int depth = 0; !b.rays.empty(); ++depth) {
     const bool primary = depth == 0;
     b.next.clear();
-    b.clear_shadows();
+    b.shadows.clear();
     // 2. intersect: the primary batch in its packets, the others 16 rays at a time
     b.hits.resize(b.rays.size());
     if (primary) {
@@ -518,7 +539,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
     // 4. shadows, each sample's terms added in batch order
     trace_shadows<Watertight>(sc, st, b, counts.shadow_walk);
     for (std::size_t i = 0; i < b.shadows.size(); ++i)
-      if (b.passed[i] != 0.0f) b.colors[b.shadows[i].sample] += b.shadows[i].term * b.passed[i];
+      if (b.passed[i] != 0.0f) b.colors[b.shadows.sample(i)] += b.shadows.term(i) * b.passed[i];
     lap(times.shadow);
     // 5. next depth
     std::swap(b.rays, b.next);

@@ -53,6 +53,7 @@ struct PacketRays {
 
   alignas(64) float org[3][kPacketSize];
   alignas(64) float dir[3][kPacketSize];
+  alignas(64) float org_w[kPacketSize], dir_w[kPacketSize];  // the w lanes (ray(l) gives them back)
   alignas(64) float inv_near[3][kPacketSize];
   alignas(64) float inv_far[3][kPacketSize];
   int near[3], far[3];  // box rows, shared by all rays
@@ -83,6 +84,7 @@ struct PacketRays {
                        dx, dy, dz, dw);
       simd::store(org[0] + g, ox), simd::store(org[1] + g, oy), simd::store(org[2] + g, oz);
       simd::store(dir[0] + g, dx), simd::store(dir[1] + g, dy), simd::store(dir[2] + g, dz);
+      simd::store(org_w + g, ow), simd::store(dir_w + g, dw);
       // NaN checked here, not reloaded from the arrays: a wide load of narrower stores
       // would wait for them to commit.
       const simd::f4 o_nan = simd::bit_or(simd::bit_or(simd::cmp_ne(ox, ox), simd::cmp_ne(oy, oy)),
@@ -96,6 +98,50 @@ struct PacketRays {
                simd::all(simd::cmp_eq(dw, zero)) && simd::movemask(dw) == 0;
     }
     return lanes & ~nan;
+  }
+
+  // The same from columns: rays first + l for the lanes l of `lanes`, kRayLanes at a time
+  // (the columns are read at first ... first + kPacketSize - 1 whatever the lanes: they
+  // must be that long). Same lanes, values and answer as the load above.
+  PacketMask load(const RayColumns& c, std::size_t first, PacketMask lanes) {
+    const std::size_t f = first + std::size_t(std::countr_zero(lanes));
+    const R zero = R::broadcast(0.0f), one = R::broadcast(1.0f);
+    PacketMask nan = 0;
+    bool w_plus_zero = true;
+    for (int g = 0; g < kPacketSize; g += kRayLanes) {
+      const unsigned chunk = lanes >> g & kChunk;
+      const auto in = R::bool_type::from_bits(chunk);
+      const auto column = [&](const float* col, float* out) {
+        R v = R::loadu(col + first + std::size_t(g));
+        if (chunk != kChunk) v = select(in, v, R::broadcast(col[f]));
+        v.store(out + g);
+        return v;
+      };
+      R o[4], d[4];
+      for (int a = 0; a < 3; ++a) o[a] = column(c.org[a], org[a]), d[a] = column(c.dir[a], dir[a]);
+      o[3] = column(c.org[3], org_w);
+      d[3] = column(c.dir[3], dir_w);
+      auto is_nan = (o[0] != o[0]) | (d[0] != d[0]);
+      for (int a = 1; a < 4; ++a) is_nan = is_nan | (o[a] != o[a]) | (d[a] != d[a]);
+      nan |= PacketMask(mlib::bits(is_nan)) << g;
+      // +0 exactly: equal to 0, sign bit clear.
+      w_plus_zero = w_plus_zero && mlib::bits((o[3] == zero) & (d[3] == zero)) == kChunk &&
+                    mlib::bits((xor_sign(one, o[3]) < zero) | (xor_sign(one, d[3]) < zero)) == 0;
+    }
+    w_zero = w_plus_zero;
+    return lanes & ~nan;
+  }
+  // The rays of `lanes` of another packet.
+  PacketMask load(const PacketRays& from, PacketMask lanes) {
+    return load(RayColumns{{from.org[0], from.org[1], from.org[2], from.org_w},
+                           {from.dir[0], from.dir[1], from.dir[2], from.dir_w}},
+                0, lanes);
+  }
+
+  // Ray l, as loaded.
+  MLIB_INLINE Ray ray(int l) const {
+    return Ray(vec4(org[0][l], org[1][l], org[2][l], org_w[l]),
+               vec4(dir[0][l], dir[1][l], dir[2][l], dir_w[l]));
   }
 
   // t_max_padded = t * kSlabPad for every lane (t_max_padded is 64-byte aligned); returns

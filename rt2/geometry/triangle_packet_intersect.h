@@ -248,14 +248,15 @@ struct WatertightPacketTest {
   TriangleMajorPacketTest<N, WatertightPacketRays<N>> triangle_major;
   RayByRayPacketTest<WatertightTriangleTest> ray_by_ray;  // set only when !shared
 
-  // origins and dirs: the packet's rays as PacketRays holds them; rays: the same rays.
+  // origins and dirs: the packet's rays as PacketRays holds them; ray_at(l): ray l of them.
+  template <class RayAt>
   WatertightPacketTest(const float (*origins)[kPacketSize], const float (*dirs)[kPacketSize],
-                       const Ray* rays, PacketMask lanes) {
+                       RayAt&& ray_at, PacketMask lanes) {
     shared = triangle_major.rays.make(origins, dirs);
     if (shared) return;
     for (; lanes; lanes &= lanes - 1) {
       const int l = std::countr_zero(lanes);
-      ray_by_ray.tests[l] = WatertightTriangleTest(rays[l]);
+      ray_by_ray.tests[l] = WatertightTriangleTest(ray_at(l));
     }
   }
 
