@@ -197,10 +197,10 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
       lanes::put4(t[k[0]].v2.m128(), t[k[1]].v2.m128(), t[k[2]].v2.m128(), t[k[3]].v2.m128(), p.v2, j);
       lanes::put4(t[k[0]].n.m128(), t[k[1]].n.m128(), t[k[2]].n.m128(), t[k[3]].n.m128(), p.tri_n, j);
       if (acc.tri_normals.empty()) return;
-      const auto* n = acc.tri_normals.data();
-      lanes::put4(n[k[0]][0].m128(), n[k[1]][0].m128(), n[k[2]][0].m128(), n[k[3]][0].m128(), p.n0, j);
-      lanes::put4(n[k[0]][1].m128(), n[k[1]][1].m128(), n[k[2]][1].m128(), n[k[3]][1].m128(), p.n1, j);
-      lanes::put4(n[k[0]][2].m128(), n[k[1]][2].m128(), n[k[2]][2].m128(), n[k[3]][2].m128(), p.n2, j);
+      const auto* nn = acc.tri_normals.data();
+      lanes::put4(nn[k[0]][0].m128(), nn[k[1]][0].m128(), nn[k[2]][0].m128(), nn[k[3]][0].m128(), p.n0, j);
+      lanes::put4(nn[k[0]][1].m128(), nn[k[1]][1].m128(), nn[k[2]][1].m128(), nn[k[3]][1].m128(), p.n1, j);
+      lanes::put4(nn[k[0]][2].m128(), nn[k[1]][2].m128(), nn[k[2]][2].m128(), nn[k[3]][2].m128(), p.n2, j);
     });
   }
   if (p.spheres) {
