@@ -74,11 +74,22 @@ void trace_transmittance_packets(const Accel& acc, const std::vector<Material>& 
   });
 }
 
+void primary_rays(const Renderer& r, const Tile& block, int s0, int s1, Ray* rays,
+                  std::uint32_t* samples) {
+  static thread_local detail::Batches b;
+  detail::generate(r, block, s0, s1, b);
+  for (std::size_t i = 0; i < b.rays.size(); ++i) {
+    rays[i] = b.rays.ray(i);
+    samples[i] = b.rays[i].sample;
+  }
+}
+
 }  // namespace
 
 const IsaKernels& kernels() {
   static const IsaKernels table{
       Isa::RT2_ISA,  // the namespaces are named as the enumerators
+      &primary_rays,
       {&render_tile_kernel<false>, &render_tile_kernel<true>},
       {&trace_closest<false>, &trace_closest<true>},
       {&trace_occluded<false>, &trace_occluded<true>},

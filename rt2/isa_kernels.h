@@ -51,7 +51,14 @@ struct IsaKernels {
                                              std::size_t packets, float* passed,
                                              TraversalCounts* counts);
 
+  // The render kernel's stage 1 (rt2/tracer.h, generate): the primary rays of samples
+  // [s0, s1) of a block's pixels (block.pixels() x (s1 - s0) of them) into rays and their
+  // sample indices into samples, in batch order; for tests that hold it to Camera::ray.
+  using PrimaryRays = void (*)(const Renderer&, const Tile& block, int s0, int s1, Ray* rays,
+                               std::uint32_t* samples);
+
   Isa isa;
+  PrimaryRays primary_rays;
   // Each indexed by the triangle test: [0] the fast one, [1] the watertight one.
   RenderTile render_tile[2];
   TraceClosest trace_closest[2];

@@ -4,16 +4,19 @@
 // up to the order in which each sample's terms are summed.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stop_token>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rt2/builtin_scene.h"
 #include "rt2/compiled_scene.h"
 #include "rt2/image_compare.h"
+#include "rt2/isa_kernels.h"
 #include "rt2/offset.h"
 #include "rt2/optics.h"
 #include "rt2/schedule.h"
@@ -411,6 +414,59 @@ vec4 trace_depth_first(const CompiledScene& c, const RenderSettings& st, const R
     color += trace_depth_first(c, st, Ray(above, reflect(ray.dir, ns)), weight * m.reflectivity,
                                depth + 1);
   return color;
+}
+
+// The kernel's primary rays (written a whole 4 x 4 packet at a time in SIMD, short packets
+// at a block's edges row by row) are Camera::ray's, bit for bit, origin and direction with
+// their w lanes, each with its sample's index; for cameras near and far from the origin, of
+// narrow and wide views, with one subpixel and four on a circle, on every instruction set.
+TEST(RenderCore, PrimaryRaysEqualCameraRayBitForBitOnEveryIsa) {
+  const auto same = [](const vec4& a, const vec4& b) {
+    for (int k = 0; k < 4; ++k)
+      if (std::bit_cast<std::uint32_t>(a[k]) != std::bit_cast<std::uint32_t>(b[k])) return false;
+    return true;
+  };
+  const Camera cameras[] = {
+      make_default_scene().camera,
+      Camera::look_at(vec4(1e6f, -3e5f, 2e7f), vec4(1e6f + 1.0f, -3e5f, 2e7f - 4.0f), vec4(0, 1, 0), 1.0f),
+      Camera::look_at(vec4(0, 0, 0), vec4(0.3f, -0.2f, -1.0f), vec4(0.1f, 1.0f, 0.0f), 170.0f),
+      Camera::look_at(vec4(1e-15f, 0, 0), vec4(0, 1e-15f, -1e-15f), vec4(0, 1, 0), 60.0f),
+  };
+  const CompiledScene c = CompiledScene::compile(make_default_scene(), BvhConfig{});
+  int checked = 0;
+  for (const Camera& cam : cameras)
+    for (int subpixels : {1, 4})
+      for (Isa isa : test::runnable_isas()) {
+        RenderSettings st = settings(subpixels, 1);
+        st.width = 37;  // blocks of 16 with edges of 5 and 13 pixels
+        st.height = 29;
+        st.pattern = Pattern::circle;  // offsets off the pixel grid
+        const Renderer r(c, View{cam, st});
+        const auto offsets = subpixel_offsets(st.subpixels, st.pattern);
+        for (const Tile block : {Tile{0, 0, 16, 16}, Tile{16, 16, 32, 29}, Tile{32, 0, 37, 16}})
+          for (const auto& [s0, s1] : {std::pair{0, subpixels}, std::pair{subpixels / 2, subpixels}}) {
+            const std::size_t n = block.pixels() * std::size_t(s1 - s0);
+            std::vector<Ray> rays(n);
+            std::vector<std::uint32_t> samples(n);
+            isa_kernels(isa).primary_rays(r, block, s0, s1, rays.data(), samples.data());
+            std::vector<int> seen(n, 0);
+            for (std::size_t i = 0; i < n; ++i) {
+              const std::uint32_t sample = samples[i];
+              ASSERT_LT(sample, n);
+              ++seen[sample];
+              const int k = s0 + int(sample % std::uint32_t(s1 - s0));
+              const int pixel = int(sample / std::uint32_t(s1 - s0));
+              const int x = block.x0 + pixel % block.width(), y = block.y0 + pixel / block.width();
+              const Ray want = cam.ray(float(x) + offsets[std::size_t(k)].x,
+                                       float(y) + offsets[std::size_t(k)].y, st.width, st.height);
+              EXPECT_TRUE(same(rays[i].org, want.org) && same(rays[i].dir, want.dir))
+                  << isa_name(isa) << " ray " << i << " pixel " << x << "," << y << " sample " << k;
+              ++checked;
+            }
+            for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(seen[i], 1) << "sample " << i;
+          }
+      }
+  std::printf("[ measure  ] %d primary rays checked against Camera::ray\n", checked);
 }
 
 TEST(RenderCore, TheBatchedKernelComputesWhatADepthFirstTracerComputes) {
