@@ -6,6 +6,8 @@
 
 #include <immintrin.h>
 
+#include <cstdint>
+
 #include "mlib/simd.h"  // MLIB_INLINE
 
 #if !defined(__AVX512F__)
@@ -30,6 +32,17 @@ struct vfloat16 {
   MLIB_INLINE static vfloat16 load(const float* p) { return {_mm512_load_ps(p)}; }  // 64-byte aligned
   MLIB_INLINE void store(float* p) const { _mm512_store_ps(p, v); }
   MLIB_INLINE static vfloat16 loadu(const void* p) { return {_mm512_loadu_ps(p)}; }  // any alignment
+  // p[0 ... 3] in every four lanes.
+  MLIB_INLINE static vfloat16 broadcast_quad(const float* p) {
+    return {_mm512_broadcast_f32x4(_mm_loadu_ps(p))};
+  }
+  // Lane i = src[ids[i / 4]]: four rays' values (of 16, src) each over four lanes.
+  MLIB_INLINE static vfloat16 spread_quads(const float* src, const std::uint32_t* ids) {
+    const __m512i quad = _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
+    const __m512i idx = _mm512_permutexvar_epi32(
+        quad, _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(ids))));
+    return {_mm512_permutexvar_ps(idx, _mm512_loadu_ps(src))};
+  }
   MLIB_INLINE void storeu(void* p) const { _mm512_storeu_ps(p, v); }
 };
 
@@ -91,6 +104,7 @@ MLIB_INLINE unsigned bits(vbool16 m) { return static_cast<unsigned>(m.m); }
 MLIB_INLINE vfloat16 compress(vfloat16 a, unsigned m) {
   return {_mm512_maskz_compress_ps(static_cast<__mmask16>(m), a.v)};
 }
+
 
 // The smallest / largest lane, in every lane (as the SSE versions, NaN lanes not expected).
 MLIB_INLINE vfloat16 reduce_min(vfloat16 a) { return {_mm512_set1_ps(_mm512_reduce_min_ps(a.v))}; }

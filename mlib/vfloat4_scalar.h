@@ -34,6 +34,11 @@ struct vfloat4 {
     return r;
   }
   MLIB_INLINE void storeu(void* p) const { std::memcpy(p, v, sizeof v); }
+  MLIB_INLINE static vfloat4 broadcast_quad(const float* p) { return loadu(p); }  // see vfloat16_avx512.h
+  // Lane i = src[ids[i / 4]] (see vfloat16_avx512.h): one ray's value in every lane.
+  MLIB_INLINE static vfloat4 spread_quads(const float* src, const std::uint32_t* ids) {
+    return broadcast(src[ids[0]]);
+  }
   MLIB_INLINE void store(float* p) const {
     for (int i = 0; i < 4; ++i) p[i] = v[i];
   }
@@ -109,6 +114,7 @@ MLIB_INLINE vfloat4 select(vbool4 m, vfloat4 if_true, vfloat4 if_false) {
 MLIB_INLINE unsigned bits(vbool4 m) {
   return unsigned(m.m[0]) | unsigned(m.m[1]) << 1 | unsigned(m.m[2]) << 2 | unsigned(m.m[3]) << 3;
 }
+
 // The lanes of `m` set, in order, moved to the lowest lanes (see vfloat16_avx512.h).
 MLIB_INLINE vfloat4 compress(vfloat4 a, unsigned m) {
   vfloat4 r = vfloat4::broadcast(a.v[0]);

@@ -40,6 +40,11 @@ struct vfloat4 {
   MLIB_INLINE void store(float* p) const { _mm_store_ps(p, v); }
   MLIB_INLINE static vfloat4 loadu(const void* p) { return {_mm_loadu_ps(static_cast<const float*>(p))}; }  // any alignment
   MLIB_INLINE void storeu(void* p) const { _mm_storeu_ps(static_cast<float*>(p), v); }
+  MLIB_INLINE static vfloat4 broadcast_quad(const float* p) { return loadu(p); }  // see vfloat16_avx512.h
+  // Lane i = src[ids[i / 4]] (see vfloat16_avx512.h): one ray's value in every lane.
+  MLIB_INLINE static vfloat4 spread_quads(const float* src, const std::uint32_t* ids) {
+    return broadcast(src[ids[0]]);
+  }
   // From and to simd.h's four floats (vec4's lanes), without a trip through memory.
   MLIB_INLINE static vfloat4 from_f4(simd::f4 a) { return {a}; }
   MLIB_INLINE simd::f4 to_f4() const { return v; }
@@ -122,6 +127,7 @@ MLIB_INLINE vfloat4 compress(vfloat4 a, unsigned m) {
       _mm_loadu_si128(reinterpret_cast<const __m128i*>(detail::kCompress4[m & 0xFu].data()));
   return {_mm_castsi128_ps(_mm_shuffle_epi8(_mm_castps_si128(a.v), shuffle))};
 }
+
 
 // The smallest lane, in every lane (NaN lanes are not expected: callers select them away).
 MLIB_INLINE vfloat4 reduce_min(vfloat4 a) {

@@ -37,6 +37,14 @@ struct vfloat8 {
   MLIB_INLINE void store(float* p) const { _mm256_store_ps(p, v); }
   MLIB_INLINE static vfloat8 loadu(const void* p) { return {_mm256_loadu_ps(static_cast<const float*>(p))}; }
   MLIB_INLINE void storeu(void* p) const { _mm256_storeu_ps(static_cast<float*>(p), v); }
+  // p[0 ... 3] in every four lanes.
+  MLIB_INLINE static vfloat8 broadcast_quad(const float* p) {
+    return {_mm256_broadcast_ps(reinterpret_cast<const __m128*>(p))};
+  }
+  // Lane i = src[ids[i / 4]] (see vfloat16_avx512.h): two rays' values over four lanes each.
+  MLIB_INLINE static vfloat8 spread_quads(const float* src, const std::uint32_t* ids) {
+    return {_mm256_set_m128(_mm_broadcast_ss(src + ids[1]), _mm_broadcast_ss(src + ids[0]))};
+  }
 };
 
 MLIB_INLINE vfloat8 operator+(vfloat8 a, vfloat8 b) { return {_mm256_add_ps(a.v, b.v)}; }
@@ -106,6 +114,7 @@ MLIB_INLINE vfloat8 compress(vfloat8 a, unsigned m) {
       _mm256_srlv_epi32(nibbles, _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28)), _mm256_set1_epi32(7));
   return {_mm256_permutevar8x32_ps(a.v, idx)};
 }
+
 
 MLIB_INLINE vfloat8 reduce_min(vfloat8 a) {
   __m256 m = _mm256_min_ps(a.v, _mm256_permute_ps(a.v, _MM_SHUFFLE(2, 3, 0, 1)));

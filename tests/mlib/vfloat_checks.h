@@ -139,6 +139,16 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
   };
   for (unsigned m = 0; m < all; m += N <= 8 ? 1 : 97) check_compress(m);
   check_compress(all);
+  // broadcast_quad repeats four floats; spread_quads puts src[ids[q]] in quad q's lanes.
+  alignas(64) float sixteen[16];
+  for (int i = 0; i < 16; ++i) sixteen[i] = i == 5 ? -0.0f : float(i * i) - 7.5f;
+  V::broadcast_quad(sixteen + 3).store(out);
+  for (int i = 0; i < N; ++i) expect(out[i] == sixteen[3 + i % 4], "broadcast_quad", i);
+  const std::uint32_t ids[4] = {5, 15, 0, 9};
+  V::spread_quads(sixteen, ids).store(out);
+  for (int i = 0; i < N; ++i)
+    expect(std::bit_cast<std::uint32_t>(out[i]) == std::bit_cast<std::uint32_t>(sixteen[ids[i / 4]]),
+           "spread_quads", i);
   alignas(64) float buffer[N + 1];
   for (int i = 0; i <= N; ++i) buffer[i] = float(-i);
   const V u = V::loadu(buffer + 1);
