@@ -28,10 +28,10 @@ struct PathRay {
   Ray ray;
   // The product of the reflection / transmission factors along the path, per channel: Kr
   // and Kt (the same in every channel) for Phong, Fresnel-weighted colours for physically
-  // based surfaces. Read with weight(), the three floats and the sample as one vector.
-  float rgb[3];
+  // based surfaces (w = 0).
+  vec4 w;
   std::uint32_t sample;  // index into the block's sample colours
-  MLIB_INLINE vec4 weight() const { return mlib::load_xyz(rgb); }
+  MLIB_INLINE const vec4& weight() const { return w; }
 };
 
 // The rays of a batch, PathRay's fields as columns (columns.h): operator[] gives one ray
@@ -44,12 +44,9 @@ class PathRays {
   bool empty() const { return c_.empty(); }
   void clear() { c_.clear(); }
 
-  MLIB_INLINE PathRay operator[](std::size_t i) const {
-    PathRay r;
-    r.ray = ray(i);
-    for (int k = 0; k < 3; ++k) r.rgb[k] = c_.f(kWeight + k)[i];
-    r.sample = c_.u(kSample)[i];
-    return r;
+  MLIB_INLINE PathRay operator[](std::size_t i) const { return PathRay{ray(i), weight(i), c_.u(kSample)[i]}; }
+  MLIB_INLINE vec4 weight(std::size_t i) const {
+    return vec4(c_.f(kWeight)[i], c_.f(kWeight + 1)[i], c_.f(kWeight + 2)[i]);
   }
   MLIB_INLINE Ray ray(std::size_t i) const {
     return Ray(vec4(c_.f(kOrg)[i], c_.f(kOrg + 1)[i], c_.f(kOrg + 2)[i], c_.f(kOrg + 3)[i]),

@@ -409,12 +409,13 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
           emit_lane(sc, phong, l, samples[i], b);
         continue;
       }
-      const PathRay pr = b.rays[i];
       if (!b.hits[i].found()) {
-        b.colors[pr.sample] += pr.weight() * (sc.has_environment ? sc.environment.radiance(pr.ray.dir)
-                                                               : sc.background);
+        b.colors[samples[i]] +=
+            b.rays.weight(i) *
+            (sc.has_environment ? sc.environment.radiance(b.rays.ray(i).dir) : sc.background);
         continue;
       }
+      const PathRay pr = b.rays[i];
       if (lists) {
         const std::uint32_t k = b.list_of[i];
         shade_hit(sc, st, depth, pr, b.points[i],
