@@ -9,6 +9,7 @@
 
 #include <array>
 #include <bit>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -139,26 +140,39 @@ inline bool spheres_in_one_leaf(const Accel& acc) {
 }
 
 // closest_plane_or_sphere for each ray of `lanes` of a packet loaded into pr (hits[l].t is
-// the bound on entry), bit for bit, kRayLanes rays at a time.
+// the bound on entry, as t_bound[l]), bit for bit, kRayLanes rays at a time; t_bound[l]
+// (64-byte aligned, every lane) becomes hits[l].t, 0 outside `lanes`, written a vector at
+// a time (read back a vector at a time by the triangles' walk).
 inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kWidth>& pr,
-                                           PacketMask lanes, float t_min, Hit* hits) {
-  if (acc.planes.empty() && acc.spheres.empty()) return;
-  if (!spheres_in_one_leaf(acc) || !pr.w_zero) {
-    for (PacketMask m = lanes; m; m &= m - 1)
-      closest_plane_or_sphere(acc, pr.ray(std::countr_zero(m)), t_min, hits[std::countr_zero(m)]);
+                                           PacketMask lanes, float t_min, Hit* hits,
+                                           float* t_bound) {
+  using V = mlib::vfloat<kRayLanes>;
+  if (acc.planes.empty() && acc.spheres.empty()) {
+    for (int c = 0; c < kPacketSize; c += kRayLanes)
+      select(V::bool_type::from_bits(lanes >> c & ((1u << kRayLanes) - 1)), V::load(t_bound + c),
+             V::broadcast(0.0f))
+          .store(t_bound + c);
     return;
   }
-  using V = mlib::vfloat<kRayLanes>;
+  if (!spheres_in_one_leaf(acc) || !pr.w_zero) {
+    for (int l = 0; l < kPacketSize; ++l) {
+      if (lanes >> l & 1) closest_plane_or_sphere(acc, pr.ray(l), t_min, hits[l]);
+      t_bound[l] = lanes >> l & 1 ? hits[l].t : 0.0f;
+    }
+    return;
+  }
   const V t_min_v = V::broadcast(t_min);
   const std::uint32_t first_sphere = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].offset;
   const std::uint32_t spheres = acc.spheres.empty() ? 0 : acc.sphere_bvh.nodes[0].count;
   for (int c = 0; c < kPacketSize; c += kRayLanes) {
     const unsigned chunk = lanes >> c & ((1u << kRayLanes) - 1);
-    if (!chunk) continue;
+    V t_best = select(V::bool_type::from_bits(chunk), V::load(t_bound + c), V::broadcast(0.0f));
+    if (!chunk) {
+      t_best.store(t_bound + c);
+      continue;
+    }
     const RayLanes<V> r = ray_lanes(pr, c);
     alignas(64) float best[kRayLanes];
-    for (int i = 0; i < kRayLanes; ++i) best[i] = chunk >> i & 1 ? hits[c + i].t : 0.0f;
-    V t_best = V::load(best);
     for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
       const V t = plane_t(acc.planes[i], r);
       const auto hit = (t > t_min_v) & (t < t_best);
@@ -194,8 +208,8 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
       }
       t_best = V::load(best);
     }
-    t_best.store(best);
-    for (unsigned m = chunk; m; m &= m - 1) hits[c + std::countr_zero(m)].t = best[std::countr_zero(m)];
+    t_best.store(t_bound + c);
+    for (unsigned m = chunk; m; m &= m - 1) hits[c + std::countr_zero(m)].t = t_bound[c + std::countr_zero(m)];
   }
 }
 
@@ -244,7 +258,8 @@ inline PacketMask walk_as_packets(PacketRays<kWidth>& pr, PacketMask lanes, Walk
 // t_min, t_max[l]) for the lanes l of `lanes` (bit for bit the same; `finite`: those
 // without a NaN coordinate, load_finite's answer), planes and spheres tested kRayLanes rays
 // at a time, the triangles walked as one packet when the rays allow it
-// (packet_traverse.h). Only the lanes of `lanes` of t_max and hits are read or written.
+// (packet_traverse.h). t_max holds kPacketSize floats (all read; those outside `lanes` are
+// not used); only the lanes of `lanes` of hits are written.
 template <bool Watertight>
 inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketMask lanes,
                                PacketMask finite, float t_min, const float* t_max, Hit* hits,
@@ -255,7 +270,10 @@ inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketM
     if (finite >> l & 1) hits[l].t = t_max[l];
   }
   if (finite) {
-    closest_plane_or_sphere_packet(acc, pr, finite, t_min, hits);
+    // Each ray's bound: t_max, then its plane or sphere hit (the triangles' walk starts there).
+    alignas(64) float t_bound[kPacketSize];
+    std::memcpy(t_bound, t_max, sizeof t_bound);  // whole vectors, as they are read
+    closest_plane_or_sphere_packet(acc, pr, finite, t_min, hits, t_bound);
     const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
     if (bvh.root == kNoChild) {
       // no triangles
@@ -264,7 +282,7 @@ inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketM
           walk_as_packets(pr, finite, [&](const PacketRays<kWidth>& p, PacketMask group) {
             const PacketTestFor<Watertight> pt(p, group);
             closest_triangle_packet<kWidth>(bvh, acc.blocks.data(), p, pt.test, group, t_min,
-                                            hits, counts);
+                                            t_bound, hits, counts);
           });
       for (PacketMask m = finite & ~walked; m; m &= m - 1) {
         const int l = std::countr_zero(m);
@@ -287,11 +305,13 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
   PacketRays<kWidth> pr;
   const PacketMask finite =
       load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, t_max, hits, counts);
+  alignas(64) float bound[kPacketSize] = {};  // only the lanes of `lanes` of t_max are read
+  for (PacketMask m = lanes; m; m &= m - 1) bound[std::countr_zero(m)] = t_max[std::countr_zero(m)];
+  closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, bound, hits, counts);
 }
 
 // closest_hit_loaded for the rays first + l of columns, l in `lanes` (the columns are read
-// at first ... first + kPacketSize - 1).
+// at first ... first + kPacketSize - 1, and t_max's kPacketSize floats).
 template <bool Watertight>
 inline void closest_hit_packet(const Accel& acc, const RayColumns& rays, std::size_t first,
                                PacketMask lanes, float t_min, const float* t_max, Hit* hits,

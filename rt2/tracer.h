@@ -212,7 +212,7 @@ inline void generate(const Renderer& r, const Tile& block, int s0, int s1, Batch
 template <bool Watertight>
 void intersect(const CompiledScene& sc, const RenderSettings& st, std::size_t begin,
                std::size_t end, Batches& b, TraversalCounts& walk) {
-  static constexpr float kNoBound[kPacketSize] = {kInfinity, kInfinity, kInfinity, kInfinity,
+  alignas(64) static constexpr float kNoBound[kPacketSize] = {kInfinity, kInfinity, kInfinity, kInfinity,
                                                   kInfinity, kInfinity, kInfinity, kInfinity,
                                                   kInfinity, kInfinity, kInfinity, kInfinity,
                                                   kInfinity, kInfinity, kInfinity, kInfinity};

@@ -268,8 +268,8 @@ MLIB_INLINE void count_packet(TraversalCounts& c, PacketMask lanes) {
 template <int N, class PacketTest>
 inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                     const PacketRays<N>& pr, const PacketTest& test,
-                                    PacketMask lanes, float t_min, Hit* hits,
-                                    TraversalCounts* counts) {
+                                    PacketMask lanes, float t_min, const float* t_bound,
+                                    Hit* hits, TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   const V t_min_v = V::broadcast(t_min);
   const typename PacketRays<N>::R t_min_r = PacketRays<N>::R::broadcast(t_min);
@@ -279,7 +279,11 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
   // lanes outside the packet, which no test reads, so that the largest is t_far).
   alignas(64) float t_best[kPacketSize];
   alignas(64) float t_max_padded[kPacketSize];
-  for (int l = 0; l < kPacketSize; ++l) t_best[l] = lanes >> l & 1 ? hits[l].t : 0.0f;
+  using R = typename PacketRays<N>::R;
+  for (int c = 0; c < kPacketSize; c += R::size)
+    select(R::bool_type::from_bits(lanes >> c & PacketRays<N>::kChunk), R::load(t_bound + c),
+           R::broadcast(0.0f))
+        .store(t_best + c);
   // t_far: no ray hits anything beyond it.
   float t_far = pr.pad_and_max(t_best, t_max_padded);
   PacketStackEntry stack[kStackSize<N>];
