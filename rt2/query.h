@@ -362,6 +362,8 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   PacketMask open =
       load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
   PacketMask blocked = 0;
+  alignas(64) float bound[kPacketSize] = {};  // every lane, as any_triangle_packet reads it
+  for (PacketMask m = lanes; m; m &= m - 1) bound[std::countr_zero(m)] = t_max[std::countr_zero(m)];
   for (PacketMask m = open; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
@@ -373,7 +375,7 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
       walk_as_packets(pr, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
         const PacketTestFor<Watertight> pt(p, group);
         blocked |= any_triangle_packet<kWidth>(
-            bvh, acc.blocks.data(), p, pt.test, group, t_min, t_max,
+            bvh, acc.blocks.data(), p, pt.test, group, t_min, bound,
             [](int, std::uint32_t, float) { return true; }, counts);
       });
   for (PacketMask m = open & ~walked; m; m &= m - 1) {
@@ -505,9 +507,8 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
     unsigned open = lanes >> k & ((1u << kRayLanes) - 1);
     if (!open) continue;
     const RayLanes<V> r = ray_lanes(pr, k);
-    alignas(64) float bound[kRayLanes];
-    for (int i = 0; i < kRayLanes; ++i) bound[i] = lanes >> (k + i) & 1 ? t_max[k + i] : 0.0f;
-    const V t_max_v = V::load(bound);
+    const V t_max_v = select(V::bool_type::from_bits(lanes >> k & ((1u << kRayLanes) - 1)),
+                             V::loadu(t_max + k), V::broadcast(0.0f));
     const auto cross = [&](int l, float kt) {  // lane l of this chunk crosses a surface
       if (c[k + l].cross(kt)) open &= ~(1u << l);
     };
@@ -551,7 +552,7 @@ inline PacketMask cross_planes_and_spheres_packet(const Accel& acc,
 // transmittance for each ray of a packet loaded into pr: passed[l] for the lanes l of
 // `lanes` (`finite`: load_finite's answer), bit for bit what transmittance gives, planes and
 // spheres tested kRayLanes rays at a time, the triangles walked as one packet when the
-// rays allow it.
+// rays allow it. t_max holds kPacketSize floats (all read, those outside `lanes` unused).
 template <bool Watertight>
 inline void transmittance_loaded(const Accel& acc, const std::vector<Material>& materials,
                                  PacketRays<kWidth>& pr, PacketMask lanes, PacketMask finite,
@@ -599,11 +600,13 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
   PacketRays<kWidth> pr;
   const PacketMask finite =
       load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  transmittance_loaded<Watertight>(acc, materials, pr, lanes, finite, t_min, t_max, passed, counts);
+  alignas(64) float bound[kPacketSize] = {};  // only the lanes of `lanes` of t_max are read
+  for (PacketMask m = lanes; m; m &= m - 1) bound[std::countr_zero(m)] = t_max[std::countr_zero(m)];
+  transmittance_loaded<Watertight>(acc, materials, pr, lanes, finite, t_min, bound, passed, counts);
 }
 
 // transmittance_loaded for the rays first + l of columns, l in `lanes` (the columns are
-// read at first ... first + kPacketSize - 1).
+// read at first ... first + kPacketSize - 1, and t_max's kPacketSize floats).
 template <bool Watertight>
 inline void transmittance_packet(const Accel& acc, const std::vector<Material>& materials,
                                  const RayColumns& rays, std::size_t first, PacketMask lanes,

@@ -340,7 +340,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
 
 // Calls on_hit(l, prim, t) for triangles hit by ray l of `lanes` in (t_min, t_max[l]), in
 // no particular order, until it returns true for that ray (then the ray is done). Returns
-// the lanes for which it did.
+// the lanes for which it did. t_max holds kPacketSize floats (those outside `lanes` unused).
 template <int N, class PacketTest, class OnHit>
 inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                       const PacketRays<N>& pr, const PacketTest& test,
@@ -353,14 +353,25 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
   count_packet(local, lanes);
   alignas(64) float t_max_padded[kPacketSize];
   alignas(64) float t_below[kPacketSize];  // the block test's inclusive bound, below t_max
-  float t_far = 0.0f;
-  for (int l = 0; l < kPacketSize; ++l) {
-    const float t = lanes >> l & 1 ? t_max[l] : 0.0f;
-    t_max_padded[l] = t * kSlabPad;
-    t_below[l] = float_below(t);
-    t_far = std::max(t_far, t_max_padded[l]);
+  // A vector at a time (t_max holds kPacketSize floats; lanes outside `lanes` take 0):
+  // float_below is one step down in the bits where t is positive, std::nextafter elsewhere.
+  using R = typename PacketRays<N>::R;
+  const R zero = R::broadcast(0.0f);
+  R far = zero;
+  for (int c = 0; c < kPacketSize; c += R::size) {
+    const unsigned chunk = lanes >> c & PacketRays<N>::kChunk;
+    const R t = select(R::bool_type::from_bits(chunk), R::loadu(t_max + c), zero);
+    const R padded = t * R::broadcast(kSlabPad);
+    padded.store(t_max_padded + c);
+    far = max(padded, far);  // a NaN lane keeps far, as std::max(t_far, NaN) would
+    const auto positive = (t > zero) & (t <= R::broadcast(kInfinity));
+    select(positive, step_ulps(t, R::broadcast(-1.0f)), t).store(t_below + c);
+    for (unsigned m = chunk & ~mlib::bits(positive); m; m &= m - 1)
+      t_below[c + std::countr_zero(m)] = float_below(t_max[c + std::countr_zero(m)]);
   }
-  const V t_far_v = V::broadcast(t_far);
+  alignas(64) float far_lanes[R::size];
+  mlib::reduce_max(far).store(far_lanes);
+  const V t_far_v = V::broadcast(far_lanes[0]);
   PacketMask open = lanes, done = 0;  // open: the rays not yet blocked
   PacketStackEntry stack[kStackSize<N>];
   int sp = 0;
