@@ -17,7 +17,7 @@
 // Which hits: a Phong material without a texture or transparency (textures and refraction
 // keep the one-hit step), when every hit considers every light (no light lists) and there
 // are at most kMaxLaneLights lights (the results of each lane's lights are kept until they
-// are emitted in order) and kMaxLaneMaterials materials.
+// are emitted in order).
 //
 // Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
 #pragma once
@@ -39,7 +39,6 @@ namespace detail {
 
 inline constexpr int kHitLanes = mlib::kWidestLanes;
 inline constexpr std::size_t kMaxLaneLights = 8;
-inline constexpr std::size_t kMaxLaneMaterials = std::size_t(1) << 24;  // exact as floats
 
 // One pass's inputs (gather_lanes) and results.
 struct PhongLanes {
@@ -55,10 +54,10 @@ struct PhongLanes {
   alignas(64) F3 plane_n;             // planes
   alignas(64) F plane_d;
   unsigned triangles = 0, spheres = 0, planes = 0;  // lanes of each kind
-  // the material's index (as a float, exact: at most kMaxLaneMaterials; the lanes of one
-  // material take its values together)
-  alignas(64) F material;
+  // the material's index (the lanes of one material take its values together), and whether
+  // every lane has the same
   std::uint32_t material_index[kHitLanes];
+  bool one_material = false;
   // results
   alignas(64) F3 above, ambient_term, reflect_dir, reflect_weight;
   alignas(64) float reflect_dir_w[kHitLanes];
@@ -71,7 +70,10 @@ struct PhongLanes {
   LightLanes light[kMaxLaneLights];
 
   // Before a pass's lanes are gathered.
-  void clear_kinds() { triangles = spheres = planes = 0; }
+  void clear_kinds() {
+    triangles = spheres = planes = 0;
+    one_material = false;
+  }
 };
 
 namespace lanes {
@@ -126,10 +128,8 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
     const std::uint32_t material = acc.material_of(prim0);
     if (!sc.plain_phong[material]) return 0;
     const unsigned active = (1u << n) - 1;  // n <= kHitLanes <= 16
-    for (int l = 0; l < kHitLanes; ++l) {
-      p.material[l] = l < n ? float(material) : -1.0f;
-      p.material_index[l] = material;
-    }
+    for (int l = 0; l < kHitLanes; ++l) p.material_index[l] = material;
+    p.one_material = true;
     const std::uint32_t i = prim_index(prim0);
     using V = mlib::vfloat<kHitLanes>;
     const auto fill3 = [](const vec4& x, float (&a)[3][kHitLanes]) {
@@ -165,12 +165,10 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
     // A hit on a plain Phong material (CompiledScene::plain_phong) takes lane l; without
     // branches on the material, whose kinds mix in a batch.
     const PrimRef prim = l < n ? hits[l].prim : kNoHit;
-    p.material[l] = -1.0f;  // no material: lanes left out
     if (prim == kNoHit) continue;
     const std::uint32_t material = acc.material_of(prim);
     const unsigned bit = unsigned(sc.plain_phong[material]) << l;
     active |= bit;
-    p.material[l] = bit ? float(material) : -1.0f;
     p.material_index[l] = material;
     kind_index[l] = prim_index(prim);
     const PrimRef tag = prim_tag(prim);
@@ -359,12 +357,14 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
   V ka[3], kd[3], ks[3], kr = zero;
   for (int c = 0; c < 3; ++c) ka[c] = kd[c] = ks[c] = zero;
   {
-    const V material = V::load(p.material);
     for (unsigned left = active; left;) {
       const std::uint32_t mi = p.material_index[std::countr_zero(left)];
       const Material& m = sc.materials[mi];
-      const M is = material == V::broadcast(float(mi));
-      left &= ~mlib::bits(is);
+      unsigned same = p.one_material ? left : 0u;
+      for (unsigned k = left; k && !p.one_material; k &= k - 1)
+        same |= unsigned(p.material_index[std::countr_zero(k)] == mi) << std::countr_zero(k);
+      const M is = M::from_bits(same);
+      left &= ~same;
       for (int c = 0; c < 3; ++c) {
         ka[c] = select(is, V::broadcast(m.ambient[c]), ka[c]);
         kd[c] = select(is, V::broadcast(m.diffuse[c]), kd[c]);

@@ -189,15 +189,10 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
       const unsigned m_hit = mlib::bits(hit) & roots.real & ~roots.doubled & chunk;
       const unsigned m_doubled = roots.doubled & chunk;
       if (!(m_hit | m_doubled)) continue;
-      const V t = select(near_in, roots.lo, roots.hi);
-      alignas(64) float ts[kRayLanes];
-      t.store(ts);
+      t_best = select(V::bool_type::from_bits(m_hit), select(near_in, roots.lo, roots.hi), t_best);
+      for (unsigned m = m_hit; m; m &= m - 1) hits[c + std::countr_zero(m)].prim = kSphereTag | i;
+      if (!m_doubled) continue;
       t_best.store(best);
-      for (unsigned m = m_hit; m; m &= m - 1) {
-        const int l = std::countr_zero(m);
-        best[l] = ts[l];
-        hits[c + l].prim = kSphereTag | i;
-      }
       for (unsigned m = m_doubled; m; m &= m - 1) {  // the one-ray test's double branch
         const int l = std::countr_zero(m);
         float t1;

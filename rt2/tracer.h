@@ -377,8 +377,7 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
   // the angle a pixel spans at the image centre: a texture lookup's footprint per distance
   const float pixel_angle =
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
-  const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights &&
-                        sc.materials.size() <= kMaxLaneMaterials;
+  const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights;
   PhongLanes phong;  // every lane a pass reads, gather_lanes writes
   const std::uint32_t* samples = b.rays.columns().u(PathRays::kSample);
   const std::size_t n = b.rays.size();
