@@ -42,9 +42,8 @@ struct RayPre {
   vec4 dir;
   vec4 inv_dir;
   explicit RayPre(const Ray& r)
-      : org(r.org), dir(r.dir), inv_dir(vec4(1.0f, 1.0f, 1.0f, 0.0f) / r.dir) {
-    inv_dir[3] = 0.0f;
-  }
+      : org(r.org), dir(r.dir),
+        inv_dir(mlib::simd::zero_w(vec4(vec4(1.0f, 1.0f, 1.0f, 0.0f) / r.dir).m128())) {}
 };
 
 // Which primitive was hit. A primitive reference packs its kind into the top two bits.
