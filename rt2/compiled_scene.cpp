@@ -36,7 +36,11 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
       c.pbr_surfaces[i] = pbr_surface(m.base_color, m.metallic, m.roughness, m.transmission);
   c.times.brdf_table_ms = ms_since(t);
   c.plain_phong.resize(c.materials.size());
-  for (std::size_t i = 0; i < c.materials.size(); ++i) c.plain_phong[i] = c.materials[i].plain_phong();
+  for (std::size_t i = 0; i < c.materials.size(); ++i) {
+    const Material& m = c.materials[i];
+    c.plain_phong[i] = m.plain_phong();
+    if (m.transparency > 0.0f || m.model == Shading::pbr) c.one_ray_per_sample = false;
+  }
   t = Clock::now();
   c.textures = TextureSet(scene.textures);
   c.times.textures_ms = ms_since(t);

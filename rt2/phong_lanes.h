@@ -500,10 +500,14 @@ inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, std::
 }
 
 // Every lane's shadow and reflected rays appended at once, a vector per column, the lanes
-// that have one moved together (mlib::compress) in lane order: what emit_lane appends lane
-// after lane when the pass's other rays append nothing (misses) and there is at most one
-// light (with more, emit_lane takes each ray's lights in turn). `samples`: the rays'
-// sample column at the pass's first ray. The ambient terms are the caller's to add.
+// that have one moved together (mlib::compress) in lane order, light after light: what
+// emit_lane appends lane after lane, when the pass's other rays append nothing (misses),
+// up to the order of a ray's shadow rays among other rays' when there are several lights.
+// That order does not show when no two rays of the pass share a sample (the caller's to
+// check): the batch is traced grouped by light, each light's rays in batch order, which
+// is the same either way, and each sample's terms are summed in the order of its lights
+// either way. `samples`: the rays' sample column at the pass's first ray. The ambient
+// terms are the caller's to add.
 inline void emit_lanes(const CompiledScene& sc, const PhongLanes& p, const std::uint32_t* samples,
                        Batches& b) {
   using lanes::V;
@@ -516,12 +520,13 @@ inline void emit_lanes(const CompiledScene& sc, const PhongLanes& p, const std::
                            unsigned mask) {
     for (int k = 0; k < 3; ++k) append(to, at, c + k, V::load(from[k]), mask);
   };
-  if (!sc.lights.empty() && p.light[0].lit) {
-    const PhongLanes::LightLanes& lt = p.light[0];
+  for (std::size_t k = 0; k < sc.lights.size(); ++k) {
+    const PhongLanes::LightLanes& lt = p.light[k];
+    if (!lt.lit) continue;
     const unsigned n = static_cast<unsigned>(std::popcount(lt.lit));
     auto& to = b.shadows.columns();
     to.reserve(to.size() + kHitLanes);
-    const std::size_t at = b.shadows.extend(0, n, false);
+    const std::size_t at = b.shadows.extend(static_cast<std::uint32_t>(k), n, false);
     append3(to, at, ShadowRays::kOrg, p.above, lt.lit);
     zero.storeu(to.f(ShadowRays::kOrg + 3) + at);
     append3(to, at, ShadowRays::kDir, lt.dir, lt.lit);
@@ -529,8 +534,9 @@ inline void emit_lanes(const CompiledScene& sc, const PhongLanes& p, const std::
     append3(to, at, ShadowRays::kTerm, lt.term, lt.lit);
     append(to, at, ShadowRays::kDistance, V::load(lt.distance), lt.lit);
     append(to, at, ShadowRays::kSample, sample, lt.lit);
-    zero.storeu(to.u(ShadowRays::kLight) + at);        // light 0
-    zero.storeu(to.u(ShadowRays::kUnoccluded) + at);   // traced
+    const std::uint32_t light = static_cast<std::uint32_t>(k);
+    V::broadcast(std::bit_cast<float>(light)).storeu(to.u(ShadowRays::kLight) + at);
+    zero.storeu(to.u(ShadowRays::kUnoccluded) + at);  // traced
   }
   if (p.reflects) {
     const unsigned n = static_cast<unsigned>(std::popcount(p.reflects));

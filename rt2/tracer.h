@@ -391,10 +391,11 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
         count_lanes(sc, phong, shaded, counts);
       }
     }
-    // With at most one light, when no other ray of the pass appends rays (they all missed),
-    // the lanes' rays are appended a vector at a time (emit_lanes), else lane by lane in
-    // batch order.
-    bool at_once = shaded != 0 && sc.lights.size() <= 1;
+    // When no other ray of the pass appends rays (they all missed), the lanes' rays are
+    // appended a vector at a time (emit_lanes), with several lights only where no two rays
+    // share a sample (primary rays; a scene whose hits never fork), else lane by lane.
+    bool at_once =
+        shaded != 0 && (sc.lights.size() <= 1 || depth == 0 || sc.one_ray_per_sample);
     for (std::size_t i = first; i < end && at_once; ++i)
       at_once = (shaded >> (i - first) & 1) || !b.hits[i].found();
     if (at_once) emit_lanes(sc, phong, samples + first, b);

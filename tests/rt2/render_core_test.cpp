@@ -141,6 +141,38 @@ Scene lanes_edge_scene() {
   return s;
 }
 
+// Forked paths with several lights: a glass pane (refraction and reflection from every hit)
+// inside a room of plain Phong walls, lit by three lights, so that a pass of the next
+// depth holds two rays of one sample, both shaded in lanes.
+Scene glass_pane_room() {
+  Scene s;
+  s.camera = Camera::look_at(vec4(0.1f, 0.2f, 1.5f), vec4(0, 0, -1), vec4(0, 1, 0), 50.0f);
+  s.ambient = vec4(0.1f, 0.1f, 0.1f);
+  Material wall;
+  wall.diffuse = vec4(0.7f, 0.6f, 0.5f);
+  wall.diffuse2 = vec4(0.2f, 0.3f, 0.8f);
+  wall.checker_scale = 0.3f;
+  wall.specular = vec4(0.3f, 0.3f, 0.3f);
+  wall.shininess = 17.0f;
+  Material glass;
+  glass.transparency = 0.55f;
+  glass.reflectivity = 0.45f;
+  glass.ior = 1.33f;
+  const std::uint32_t w = s.add_material("wall", wall), g = s.add_material("glass", glass);
+  s.meshes.push_back(make_cube(vec4(0, 0, 0), 3.0f, w));  // seen from inside
+  Mesh pane;
+  pane.name = "pane";
+  pane.positions = {vec4(-1.5f, -1.2f, -0.5f), vec4(1.5f, -1.2f, -0.7f), vec4(1.5f, 1.2f, -0.7f),
+                    vec4(-1.5f, 1.2f, -0.5f)};
+  pane.faces = {{0, 1, 2}, {0, 2, 3}};
+  pane.face_materials = {g, g};
+  s.meshes.push_back(pane);
+  s.lights.push_back(Light{vec4(1.1f, 2.1f, 1.3f), vec4(1, 0.9f, 0.8f), 0.7f});
+  s.lights.push_back(Light{vec4(-2.2f, 1.7f, -2.1f), vec4(0.6f, 0.7f, 1.0f), 0.9f});
+  s.lights.push_back(Light{vec4(0.3f, -2.5f, 2.2f), vec4(0.3f, 1.0f, 0.4f), 0.37f});
+  return s;
+}
+
 // Hits from behind: the camera inside a mirror shell of flat triangles (no vertex normals
 // anywhere in the scene) holding the built-in scene's content, made flat too; or inside a
 // mirror sphere holding a flat icosahedron. Every normal the lanes meet there is flipped.
@@ -176,7 +208,8 @@ Scene inside_mirror(bool shell) {
 // both triangle tests, supersampling and deep mirrors; with lights up to the lanes' limit
 // (and beyond it, where every hit takes the one-hit step) and none; on glass, whose hits
 // take the one-hit step between lanes of the same pass; at the numbers' edges; from behind;
-// where a pass's hits are all on one primitive.
+// where a pass's hits are all on one primitive; where paths fork and a pass holds two rays
+// of one sample, with several lights.
 TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) {
   Scene glass = test::glass_scene();
   Material g = glass.materials[glass.sphere_materials.back()];
@@ -194,6 +227,7 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
   cases.push_back({"edges", lanes_edge_scene(), 0, true});
   cases.push_back({"inside a shell", inside_mirror(true), 0, true});
   cases.push_back({"inside a sphere", inside_mirror(false), 0, true});
+  cases.push_back({"glass pane in a room", glass_pane_room(), 0, true});
   for (std::size_t lights : {0u, 1u, 8u, 9u}) {
     Scene s = make_default_scene();
     if (lights == 0)
