@@ -7,6 +7,9 @@
 // packet's rays with one vector load per coordinate, and the shading lanes read rays and
 // append shadow and secondary rays a vector at a time (mlib::compress), where records of
 // structures would be transposed lane by lane.
+//
+// Compiled per instruction set like the kernel (the code lives in rt2::RT2_ISA, so that no
+// copy built for a wider set can stand in for another's).
 #pragma once
 
 #include <algorithm>
@@ -16,12 +19,26 @@
 #include <memory>
 #include <new>
 
-namespace rt2 {
+namespace rt2::RT2_ISA {
 
 template <int C>
 class Columns {
  public:
   static constexpr std::size_t kSlack = 16;
+
+  Columns() = default;
+  // A moved-from batch is empty (and can be used again).
+  Columns(Columns&& o) noexcept { swap(o); }
+  Columns& operator=(Columns&& o) noexcept {
+    swap(o);
+    return *this;
+  }
+  void swap(Columns& o) noexcept {
+    data_.swap(o.data_);
+    const std::size_t size = size_, capacity = capacity_, stride = stride_;
+    size_ = o.size_, capacity_ = o.capacity_, stride_ = o.stride_;
+    o.size_ = size, o.capacity_ = capacity, o.stride_ = stride;
+  }
 
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
@@ -41,14 +58,14 @@ class Columns {
 
   float* f(int c) { return data_.get() + std::size_t(c) * stride_; }
   const float* f(int c) const { return data_.get() + std::size_t(c) * stride_; }
-  // A column of unsigned integers (its storage is never read as floats by scalar code;
-  // SIMD passes move its bits through float vectors).
+  // A column of unsigned integers (scalar code reads and writes it as such; SIMD passes move
+  // its bits through float vectors, as the scalar build's compress does through floats).
   std::uint32_t* u(int c) { return reinterpret_cast<std::uint32_t*>(f(c)); }
   const std::uint32_t* u(int c) const { return reinterpret_cast<const std::uint32_t*>(f(c)); }
 
  private:
   void grow(std::size_t n) {
-    std::size_t capacity = std::max<std::size_t>({n, 2 * capacity_, 256});
+    std::size_t capacity = std::max(n, std::max<std::size_t>(2 * capacity_, 256));
     capacity = (capacity + 15) / 16 * 16;  // whole 64-byte lines per column
     const std::size_t stride = capacity + kSlack;
     const std::size_t bytes = std::size_t(C) * stride * sizeof(float);
@@ -69,4 +86,4 @@ class Columns {
   std::size_t size_ = 0, capacity_ = 0, stride_ = 0;
 };
 
-}  // namespace rt2
+}  // namespace rt2::RT2_ISA

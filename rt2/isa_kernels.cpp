@@ -84,12 +84,27 @@ void primary_rays(const Renderer& r, const Tile& block, int s0, int s1, Ray* ray
   }
 }
 
+template <bool Watertight>
+void trace_closest_columns(const Accel& acc, const RayColumns& rays, std::size_t first,
+                           std::uint32_t lanes, const float* t_max, Hit* hits) {
+  closest_hit_packet<Watertight>(acc, rays, first, lanes, 0.0f, t_max, hits);
+}
+
+template <bool Watertight>
+void trace_transmittance_columns(const Accel& acc, const std::vector<Material>& materials,
+                                 const RayColumns& rays, std::size_t first, std::uint32_t lanes,
+                                 const float* t_max, float* passed) {
+  transmittance_packet<Watertight>(acc, materials, rays, first, lanes, 0.0f, t_max, passed);
+}
+
 }  // namespace
 
 const IsaKernels& kernels() {
   static const IsaKernels table{
       Isa::RT2_ISA,  // the namespaces are named as the enumerators
       &primary_rays,
+      {&trace_closest_columns<false>, &trace_closest_columns<true>},
+      {&trace_transmittance_columns<false>, &trace_transmittance_columns<true>},
       {&render_tile_kernel<false>, &render_tile_kernel<true>},
       {&trace_closest<false>, &trace_closest<true>},
       {&trace_occluded<false>, &trace_occluded<true>},

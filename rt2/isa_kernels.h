@@ -57,8 +57,21 @@ struct IsaKernels {
   using PrimaryRays = void (*)(const Renderer&, const Tile& block, int s0, int s1, Ray* rays,
                                std::uint32_t* samples);
 
+  // The packet queries the render kernel makes on its batches' columns (rt2/query.h): the
+  // rays first + l of `rays` for the lanes l of `lanes` (one packet), into hits[l] /
+  // passed[l]; the columns and t_max are read at kPacketSize (16) entries whatever the
+  // lanes. For tests that hold them to the single-ray queries.
+  using TraceClosestColumns = void (*)(const Accel&, const RayColumns& rays, std::size_t first,
+                                       std::uint32_t lanes, const float* t_max, Hit* hits);
+  using TraceTransmittanceColumns = void (*)(const Accel&, const std::vector<Material>&,
+                                             const RayColumns& rays, std::size_t first,
+                                             std::uint32_t lanes, const float* t_max,
+                                             float* passed);
+
   Isa isa;
   PrimaryRays primary_rays;
+  TraceClosestColumns trace_closest_columns[2];
+  TraceTransmittanceColumns trace_transmittance_columns[2];
   // Each indexed by the triangle test: [0] the fast one, [1] the watertight one.
   RenderTile render_tile[2];
   TraceClosest trace_closest[2];

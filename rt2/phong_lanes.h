@@ -11,8 +11,10 @@
 // normalize, the checker's cell parity from exact floors (a cell index of 2^24 or more is
 // even, as every float that large is; NaN and beyond int64 give the cast's even integer
 // indefinite), std::pow per lane for highlights. The caller emits each lane's results in
-// batch order (emit_lane), so the batch's shadow and secondary rays come out in the order
-// the one-hit step makes them, and images are the same bits.
+// batch order (emit_lane, or emit_lanes a vector at a time where that order is kept), so
+// the batch's shadow and secondary rays come out in the order the one-hit step makes them,
+// and images are the same bits. The rays are read from the batch's columns: lanes past the
+// batch's end read whatever the columns hold there, and are never emitted.
 //
 // Which hits: a Phong material without a texture or transparency (textures and refraction
 // keep the one-hit step), when every hit considers every light (no light lists) and there

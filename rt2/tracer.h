@@ -18,7 +18,8 @@
 //      batch of shadow rays; reflected and refracted rays whose weight passes min_weight go
 //      into the next batch;
 //   4. trace the shadow batch (transmittance; in packets of 16 rays to one light, grouped by
-//      a stable sort) and add each light's term times what passed, in batch order; a ray
+//      a stable sort unless the batch comes grouped) and add each light's term times what
+//      passed, in batch order; a ray
 //      from a tile or cluster to a light it provably sees whole (cluster_visibility.h) is
 //      not traced: it passes 1, as its walk would return;
 //   5. repeat 2 ... 4 with the next batch until it is empty or `depth` is reached;
@@ -490,8 +491,6 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
       for (std::size_t i = 0; i < n; ++i) one(static_cast<std::uint32_t>(i));
       return;
     }
-    b.light_begin = b.shadows.run_ends();
-    if (n > 0) b.light_begin.push_back(static_cast<std::uint32_t>(n));
   } else {
     b.to_trace.clear();
     for (std::size_t i = 0; i < n; ++i) {
@@ -508,11 +507,10 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
   }
   // Packets of up to 16 rays of a run; in a batch traced as it is, a packet's rays are
   // consecutive and load straight from the columns.
-  std::size_t run = 0;
-  for (const std::uint32_t run_end : b.light_begin) {
+  const auto trace_run = [&](std::size_t run, std::size_t run_end) {
     if (run_end - run < kMinShadowPacket) {
       for (; run < run_end; ++run) one(as_is ? static_cast<std::uint32_t>(run) : b.by_light[run]);
-      continue;
+      return;
     }
     for (; run < run_end; run += kPacketSize) {
       const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, run_end - run));
@@ -532,8 +530,15 @@ void trace_shadows(const CompiledScene& sc, const RenderSettings& st, Batches& b
                                        &walk);
       for (int l = 0; l < count; ++l) b.passed[b.by_light[run + l]] = passed[l];
     }
+  };
+  // The runs: of the batch as it is (ShadowRays kept their ends), or of its groups.
+  const std::vector<std::uint32_t>& ends = as_is ? b.shadows.run_ends() : b.light_begin;
+  std::size_t run = 0;
+  for (const std::uint32_t run_end : ends) {
+    trace_run(run, run_end);
     run = run_end;
   }
+  if (as_is) trace_run(run, n);
 }
 
 // Samples [s0, s1) of the pixels of `block` (at most RenderSettings::block squared), into

@@ -64,7 +64,8 @@ struct PacketRays {
   // arrays holds x, y, z only; code that emulates four-lane arithmetic relies on it).
   bool w_zero = true;
 
-  // Loads rays[l] for the lanes l of `lanes` (at least one) into org and dir, four rays at a
+  // Loads rays[l] for the lanes l of `lanes` (at least one) into org and dir (and their w
+  // lanes into org_w and dir_w), four rays at a
   // time (a transpose); returns those lanes whose ray has no NaN coordinate (w included,
   // as has_nan checks). Lanes without a ray take the first ray's values: their bits are
   // masked off later, and the frustum's bounds stay those of the rays. When a ray has a NaN,
@@ -262,7 +263,9 @@ MLIB_INLINE void count_packet(TraversalCounts& c, PacketMask lanes) {
 }
 
 // The closest triangle hit of each ray l of `lanes` in (t_min, hits[l].t), updating
-// hits[l] as closest_triangle_walk does (ties to the smaller index). `test` tests a leaf
+// hits[l] as closest_triangle_walk does (ties to the smaller index). t_bound holds every
+// lane's hits[l].t (kPacketSize floats, 64-byte aligned; the lanes outside `lanes` are not
+// read), whole vectors where the rays' bounds were just computed. `test` tests a leaf
 // block against the packet's rays (triangle_packet_intersect.h); `pr` was made from the
 // same rays and lanes.
 template <int N, class PacketTest>

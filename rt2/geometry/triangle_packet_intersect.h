@@ -194,12 +194,15 @@ struct TriangleMajorPacketTest {
   // Triangle by triangle of b, N rays of `lanes` at a time: f(l, prim, t, u, v) for each
   // hit of ray l with t in (t_min, t_upper[l]], t_upper re-read for every triangle (f may
   // lower it). A ray for which f returns true is dropped after that triangle; returns
-  // those rays.
+  // those rays. Or by pairs (few rays), each pass's bounds read once: a hit beyond a bound
+  // that f lowered meanwhile is still offered to f, which for nearest() keeps the nearer
+  // (replaces orders hits whatever the order they come in) and for any() is a hit in range.
   template <class F>
   MLIB_INLINE PacketMask for_each_hit(const TriangleBlock& b, PacketMask lanes, float t_min_s,
                                       const float* t_upper, F&& f) const {
     const V t_min = V::broadcast(t_min_s);
     PacketMask done = 0;
+    if (!lanes) return done;
     // Few rays: (ray, triangle) pairs, N / 4 rays against the block's four triangles per
     // pass, when that takes fewer passes than triangle by triangle; with 8 or 16 lanes, half
     // as many at most (a pass of pairs also spreads its rays over the lanes: measured on the
@@ -227,9 +230,12 @@ struct TriangleMajorPacketTest {
       for (int p = 0; p < k; p += kRaysPerPass) {
         V t, u, v;
         const int here = std::min(kRaysPerPass, k - p);
+        // the pass's rays, and the block's triangles (its empty lanes' NaN vertices hit
+        // nothing: masked all the same)
+        constexpr unsigned kEveryQuad = N == 16 ? 0x1111u : N == 8 ? 0x11u : 0x1u;
         unsigned m = rays.hits_pairs(v0, v1, v2, ids + p, t_min, V::spread_quads(t_upper, ids + p),
                                      t, u, v) &
-                     ((1u << (4 * here)) - 1);
+                     ((1u << (4 * here)) - 1) & (((1u << triangles) - 1) * kEveryQuad);
         if (!m) continue;
         alignas(64) float ts[N], us[N], vs[N];
         t.store(ts), u.store(us), v.store(vs);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "rt2/isa_kernels.h"
 #include "rt2/shapes.h"
 #include "rt2/trace.h"
 #include "tests/rt2/test_util.h"
@@ -296,6 +297,98 @@ TEST(Packets, DegenerateLanesAndPartlyFilledPacketsEqualSingleRays) {
   // Runs: every ISA, both tests, closest and occluded. About half the rays walk in packets.
   const std::size_t rays = b.rays.size() * test::runnable_isas().size() * 2 * 2;
   EXPECT_GT(c.packet_rays, rays / 4);
+}
+
+// The render kernel's packets come from its batches' columns (PacketRays::load from
+// RayColumns): a packet of any lanes (not only the first ones) at any offset, its other
+// entries and bounds holding junk, answers as each of its rays alone, bit for bit: closest
+// hits and transmittance, rays with NaN coordinates, w lanes of -0 or 1, zero and mixed
+// directions, bounds of 0, NaN or short, on every instruction set with both tests.
+TEST(Packets, ColumnPacketsOfAnyLanesEqualSingleRaysBitForBit) {
+  Scene scene = packet_scene();
+  Material glass;
+  glass.transparency = 0.6f;
+  const std::uint32_t g = scene.add_material("glass", glass);
+  for (std::size_t f = 0; f < scene.meshes[1].face_materials.size(); f += 2)
+    scene.meshes[1].face_materials[f] = g;  // half the soup lets some light through
+  const Batch grid = tiles(vec4(0.0f, 0.0f, 4.0f), vec4(0.0f), 1.2f, 64, 64);
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  constexpr std::size_t kRays = 4096;
+  // Columns of kRays + 16 entries (the last packets read 16 from their first): rays of the
+  // grid, some made degenerate, the rest junk until a packet takes them.
+  std::vector<float> col[8];
+  for (auto& c : col) c.assign(kRays + 16, kNaN);
+  std::vector<float> t_max(kRays + 16, kNaN);
+  std::vector<Ray> rays(kRays);
+  for (std::size_t i = 0; i < kRays; ++i) {
+    Ray r = grid.rays[i % grid.rays.size()];
+    float t = kInfinity;
+    switch (rng() % 16) {
+      case 0: r.dir[rng() % 3] = kNaN; break;
+      case 1: r.org[rng() % 4] = kNaN; break;
+      case 2: t = 0.0f; break;
+      case 3: t = kNaN; break;
+      case 4: t = 4.0f * u(rng); break;
+      case 5: r.org[3] = -0.0f; break;
+      case 6: r.dir[3] = 1.0f; break;
+      case 7: r.dir = test::random_direction(rng); break;
+      case 8: r.dir = vec4(0.0f); break;
+      case 9: r.dir[rng() % 2] = 0.0f; r.dir = normalize(r.dir); break;
+      default: break;
+    }
+    rays[i] = r;
+    t_max[i] = t;
+    for (int a = 0; a < 4; ++a) {
+      col[a][i] = r.org[a];
+      col[4 + a][i] = r.dir[a];
+    }
+  }
+  const RayColumns columns{{col[0].data(), col[1].data(), col[2].data(), col[3].data()},
+                           {col[4].data(), col[5].data(), col[6].data(), col[7].data()}};
+  std::size_t checked = 0, hits = 0, partial = 0;
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    const auto& kernels = isa_kernels(isa);
+    for (bool watertight : {false, true}) {
+      const TraceOptions opt{watertight};
+      std::vector<Hit> single(kRays);
+      std::vector<float> passed(kRays);
+      trace_closest(acc, opt, rays.data(), t_max.data(), kRays, single.data());
+      trace_transmittance(acc, scene.materials, opt, rays.data(), t_max.data(), kRays,
+                          passed.data());
+      for (std::size_t first = 0; first + 16 <= kRays; first += 1 + rng() % 16) {
+        // Mostly coherent runs of lanes, some scattered, some single.
+        const std::uint32_t lanes = rng() % 3 == 0 ? std::uint32_t(rng()) & 0xFFFFu
+                                    : rng() % 2   ? (1u << (1 + rng() % 16)) - 1u
+                                                  : 1u << (rng() % 16);
+        if (!lanes) continue;
+        Hit hit[16];
+        float pass[16];
+        for (int l = 0; l < 16; ++l) pass[l] = -1.0f;
+        kernels.trace_closest_columns[watertight](acc, columns, first, lanes, t_max.data() + first,
+                                                  hit);
+        kernels.trace_transmittance_columns[watertight](acc, scene.materials, columns, first,
+                                                        lanes, t_max.data() + first, pass);
+        for (int l = 0; l < 16; ++l) {
+          if (!(lanes >> l & 1)) continue;
+          const std::size_t i = first + std::size_t(l);
+          ++checked;
+          hits += single[i].found();
+          partial += passed[i] > 0.0f && passed[i] < 1.0f;
+          ASSERT_TRUE(bitwise_same(single[i], hit[l]))
+              << isa_name(isa) << " watertight " << watertight << " ray " << i << " lane " << l
+              << ": single t " << single[i].t << " prim " << single[i].prim << ", packet t "
+              << hit[l].t << " prim " << hit[l].prim;
+          ASSERT_EQ(std::memcmp(&passed[i], &pass[l], sizeof(float)), 0)
+              << isa_name(isa) << " watertight " << watertight << " ray " << i << " lane " << l
+              << ": single " << passed[i] << ", packet " << pass[l];
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, checked / 3);
+  EXPECT_GT(partial, 100u);
 }
 
 // A shadow ray through 24 glass panes of three transparencies (more crossings than the
