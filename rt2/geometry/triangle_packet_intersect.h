@@ -228,7 +228,7 @@ struct TriangleMajorPacketTest {
       for (PacketMask m = lanes; m; m &= m - 1) ids[k++] = static_cast<std::uint32_t>(std::countr_zero(m));
       for (int j = k; j < k + kRaysPerPass; ++j) ids[j] = ids[k - 1];
       for (int p = 0; p < k; p += kRaysPerPass) {
-        V t, u, v;
+        V t = V::broadcast(0.0f), u = t, v = t;  // set by hits() where it hits (GCC cannot tell)
         const int here = std::min(kRaysPerPass, k - p);
         // the pass's rays, and the block's triangles (its empty lanes' NaN vertices hit
         // nothing: masked all the same)
@@ -256,7 +256,7 @@ struct TriangleMajorPacketTest {
       for (int c = 0; c < kPacketSize; c += N) {
         const unsigned chunk = lanes >> c & ((1u << N) - 1);
         if (!chunk) continue;
-        V t, u, v;
+        V t = V::broadcast(0.0f), u = t, v = t;  // set by hits() where it hits (GCC cannot tell)
         unsigned m = rays.hits(v0, v1, v2, c, t_min, V::load(t_upper + c), t, u, v) & chunk;
         if (!m) continue;
         alignas(64) float ts[N], us[N], vs[N];
