@@ -22,6 +22,18 @@
 namespace rt2::RT2_ISA {
 namespace detail {
 
+// A batch whose first eight columns are its rays (origin x y z w, then direction x y z w):
+// ray i, and the rays as RayColumns.
+template <int C>
+MLIB_INLINE Ray ray_in(const Columns<C>& c, std::size_t i) {
+  return Ray(vec4(c.f(0)[i], c.f(1)[i], c.f(2)[i], c.f(3)[i]),
+             vec4(c.f(4)[i], c.f(5)[i], c.f(6)[i], c.f(7)[i]));
+}
+template <int C>
+RayColumns ray_columns(const Columns<C>& c) {
+  return {{c.f(0), c.f(1), c.f(2), c.f(3)}, {c.f(4), c.f(5), c.f(6), c.f(7)}};
+}
+
 // A ray of the ray tree, and whose sample it adds to, as one-ray code reads it from a batch
 // (PathRays). A ray's depth is its batch's, and its kind is counted when it is spawned.
 struct PathRay {
@@ -39,6 +51,7 @@ struct PathRay {
 class PathRays {
  public:
   enum Column { kOrg = 0, kDir = 4, kWeight = 8, kSample = 11, kColumns = 12 };  // x y z w / r g b
+  static_assert(kOrg == 0 && kDir == 4);  // ray_in, ray_columns
 
   std::size_t size() const { return c_.size(); }
   bool empty() const { return c_.empty(); }
@@ -48,10 +61,7 @@ class PathRays {
   MLIB_INLINE vec4 weight(std::size_t i) const {
     return vec4(c_.f(kWeight)[i], c_.f(kWeight + 1)[i], c_.f(kWeight + 2)[i]);
   }
-  MLIB_INLINE Ray ray(std::size_t i) const {
-    return Ray(vec4(c_.f(kOrg)[i], c_.f(kOrg + 1)[i], c_.f(kOrg + 2)[i], c_.f(kOrg + 3)[i]),
-               vec4(c_.f(kDir)[i], c_.f(kDir + 1)[i], c_.f(kDir + 2)[i], c_.f(kDir + 3)[i]));
-  }
+  MLIB_INLINE Ray ray(std::size_t i) const { return ray_in(c_, i); }
   // Appends a ray (the weight's w is not kept).
   MLIB_INLINE void push(const vec4& org, const vec4& dir, const vec4& weight, std::uint32_t sample) {
     const std::size_t i = c_.extend(1);
@@ -82,10 +92,7 @@ class PathRays {
     c_.extend(std::size_t(n));
   }
 
-  RayColumns rays() const {
-    return {{c_.f(kOrg), c_.f(kOrg + 1), c_.f(kOrg + 2), c_.f(kOrg + 3)},
-            {c_.f(kDir), c_.f(kDir + 1), c_.f(kDir + 2), c_.f(kDir + 3)}};
-  }
+  RayColumns rays() const { return ray_columns(c_); }
   Columns<kColumns>& columns() { return c_; }
   const Columns<kColumns>& columns() const { return c_; }
 
@@ -112,6 +119,7 @@ class ShadowRays {
     kOrg = 0, kDir = 4, kTerm = 8, kDistance = 11, kSample = 12, kLight = 13, kUnoccluded = 14,
     kColumns = 15
   };
+  static_assert(kOrg == 0 && kDir == 4);  // ray_in, ray_columns
 
   std::size_t size() const { return c_.size(); }
   bool empty() const { return c_.empty(); }
@@ -148,10 +156,7 @@ class ShadowRays {
     return c_.extend(n);
   }
 
-  MLIB_INLINE Ray ray(std::size_t i) const {
-    return Ray(vec4(c_.f(kOrg)[i], c_.f(kOrg + 1)[i], c_.f(kOrg + 2)[i], c_.f(kOrg + 3)[i]),
-               vec4(c_.f(kDir)[i], c_.f(kDir + 1)[i], c_.f(kDir + 2)[i], c_.f(kDir + 3)[i]));
-  }
+  MLIB_INLINE Ray ray(std::size_t i) const { return ray_in(c_, i); }
   MLIB_INLINE vec4 term(std::size_t i) const {
     return vec4(c_.f(kTerm)[i], c_.f(kTerm + 1)[i], c_.f(kTerm + 2)[i]);
   }
@@ -161,10 +166,7 @@ class ShadowRays {
   std::uint32_t light(std::size_t i) const { return c_.u(kLight)[i]; }
   bool unoccluded(std::size_t i) const { return c_.u(kUnoccluded)[i] != 0; }
 
-  RayColumns rays() const {
-    return {{c_.f(kOrg), c_.f(kOrg + 1), c_.f(kOrg + 2), c_.f(kOrg + 3)},
-            {c_.f(kDir), c_.f(kDir + 1), c_.f(kDir + 2), c_.f(kDir + 3)}};
-  }
+  RayColumns rays() const { return ray_columns(c_); }
   Columns<kColumns>& columns() { return c_; }
 
   // The shape (see above).

@@ -71,6 +71,11 @@ struct PhongLanes {
   };
   LightLanes light[kMaxLaneLights];
 
+  // Lane l's ambient term, weighted.
+  MLIB_INLINE vec4 ambient(int l) const {
+    return vec4(ambient_term[0][l], ambient_term[1][l], ambient_term[2][l]);
+  }
+
   // Before a pass's lanes are gathered.
   void clear_kinds() {
     triangles = spheres = planes = 0;
@@ -236,12 +241,6 @@ MLIB_INLINE void store3(const V* v, float (&a)[3][kHitLanes]) {
 MLIB_INLINE void select3(M m, const V* a, const V* b, V* out) {
   for (int c = 0; c < 3; ++c) out[c] = select(m, a[c], b[c]);
 }
-// Lanes of `lanes` set.
-MLIB_INLINE M lanes_of(unsigned mask) {
-  alignas(64) float f[kHitLanes];
-  for (int l = 0; l < kHitLanes; ++l) f[l] = mask >> l & 1 ? 1.0f : 0.0f;
-  return V::load(f) > V::broadcast(0.0f);
-}
 
 // a / |a| as vec4's normalize of (a, +0): divided by sqrt(a·a) where that is a normal
 // float, and through normalize itself (its rescaling path) in the other lanes of `mask`.
@@ -295,7 +294,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
   V q[3];  // ray.at(t), for spheres and planes
   for (int c = 0; c < 3; ++c) q[c] = org[c] + dir[c] * t;
   if (p.planes) {
-    const M is = lanes::lanes_of(p.planes);
+    const M is = M::from_bits(p.planes);
     V n[3];
     lanes::load3(p.plane_n, n);
     const V s = dot_dpps(q, n, zero) + V::load(p.plane_d);
@@ -306,7 +305,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
     lanes::select3(is, n, ns, ns);
   }
   if (p.spheres) {
-    const M is = lanes::lanes_of(p.spheres);
+    const M is = M::from_bits(p.spheres);
     V c3[3], n[3], x[3];
     lanes::load3(p.center, c3);
     for (int c = 0; c < 3; ++c) n[c] = q[c] - c3[c];
@@ -318,7 +317,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
     lanes::select3(is, n, ns, ns);
   }
   if (p.triangles) {
-    const M is = lanes::lanes_of(p.triangles);
+    const M is = M::from_bits(p.triangles);
     V a[3], b[3], c3[3], n[3], x[3];
     lanes::load3(p.v0, a);
     lanes::load3(p.v1, b);
@@ -483,7 +482,7 @@ inline void count_lanes(const CompiledScene& sc, const PhongLanes& p, unsigned a
 inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, std::uint32_t sample,
                       Batches& b) {
   const unsigned bit = 1u << l;
-  b.colors[sample] += vec4(p.ambient_term[0][l], p.ambient_term[1][l], p.ambient_term[2][l]);
+  b.colors[sample] += p.ambient(l);
   const std::size_t light_count = sc.lights.size();
   const vec4 above(p.above[0][l], p.above[1][l], p.above[2][l]);
   for (std::size_t k = 0; k < light_count; ++k) {

@@ -109,6 +109,12 @@ inline Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float t_ma
   return h;
 }
 
+// The bounds of a packet's lanes, as the packet steps read them (kPacketSize floats): t_max[l]
+// for the lanes l of `lanes` (only those of t_max are read), 0 for the others.
+inline void lane_bounds(PacketMask lanes, const float* t_max, float* bound) {
+  for (int l = 0; l < kPacketSize; ++l) bound[l] = lanes >> l & 1 ? t_max[l] : 0.0f;
+}
+
 // Below this many rays a packet's rays walk one by one: setting the packet up (its
 // frustum, its leaf test) would cost more than sharing the walk saves.
 inline constexpr int kMinPacketRays = 4;
@@ -300,8 +306,8 @@ inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lan
   PacketRays<kWidth> pr;
   const PacketMask finite =
       load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  alignas(64) float bound[kPacketSize] = {};  // only the lanes of `lanes` of t_max are read
-  for (PacketMask m = lanes; m; m &= m - 1) bound[std::countr_zero(m)] = t_max[std::countr_zero(m)];
+  alignas(64) float bound[kPacketSize];
+  lane_bounds(lanes, t_max, bound);
   closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, bound, hits, counts);
 }
 
@@ -357,8 +363,8 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   PacketMask open =
       load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
   PacketMask blocked = 0;
-  alignas(64) float bound[kPacketSize] = {};  // every lane, as any_triangle_packet reads it
-  for (PacketMask m = lanes; m; m &= m - 1) bound[std::countr_zero(m)] = t_max[std::countr_zero(m)];
+  alignas(64) float bound[kPacketSize];
+  lane_bounds(lanes, t_max, bound);
   for (PacketMask m = open; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
@@ -595,8 +601,8 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
   PacketRays<kWidth> pr;
   const PacketMask finite =
       load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  alignas(64) float bound[kPacketSize] = {};  // only the lanes of `lanes` of t_max are read
-  for (PacketMask m = lanes; m; m &= m - 1) bound[std::countr_zero(m)] = t_max[std::countr_zero(m)];
+  alignas(64) float bound[kPacketSize];
+  lane_bounds(lanes, t_max, bound);
   transmittance_loaded<Watertight>(acc, materials, pr, lanes, finite, t_min, bound, passed, counts);
 }
 

@@ -404,8 +404,7 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
       if (shaded >> (i - first) & 1) {
         const int l = int(i - first);
         if (at_once)
-          b.colors[samples[i]] +=
-              vec4(phong.ambient_term[0][l], phong.ambient_term[1][l], phong.ambient_term[2][l]);
+          b.colors[samples[i]] += phong.ambient(l);
         else
           emit_lane(sc, phong, l, samples[i], b);
         continue;
