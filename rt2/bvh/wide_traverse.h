@@ -125,7 +125,7 @@ inline constexpr bool kPushInOctantOrder =
 // the first one would stall anyway, the others then arrive during that wait.
 template <int N>
 inline constexpr int kNodeLines = int(sizeof(WideNode<N>) / 64);
-inline constexpr int kBlockLines = 3;
+inline constexpr int kBlockLines = 4;
 
 template <int N>
 MLIB_INLINE void prefetch_ref(const WideBvh<N>& bvh, const TriangleBlock* blocks,

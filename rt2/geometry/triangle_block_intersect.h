@@ -53,11 +53,31 @@ MLIB_INLINE NearestHit nearest_lane(vbool4 hit, vfloat4 t, vfloat4 u, vfloat4 v)
   return n;
 }
 
+// The triangles of V's lanes (a block's four; one triangle in every lane; a block's four
+// repeated), each coordinate a vector: what the tests below read.
+template <class V>
+struct TriangleLanes {
+  V v0[3], v1[3], v2[3], n[3];  // [axis]
+
+  // The four triangles of b (V = vfloat4).
+  MLIB_INLINE static TriangleLanes load(const TriangleBlock& b) {
+    TriangleLanes t;
+    for (int a = 0; a < 3; ++a) {
+      t.v0[a] = V::load(b.v0[a]);
+      t.v1[a] = V::load(b.v1[a]);
+      t.v2[a] = V::load(b.v2[a]);
+      t.n[a] = V::load(b.n[a]);
+    }
+    return t;
+  }
+};
+
 // The thesis's test (formula 10) for the lanes of V, each lane one (triangle, ray) pair,
 // computing what `intersect` (triangle.h) computes. Shared by the four-triangle test below
 // (four triangles, one ray) and the packet test (triangle_packet_intersect.h: one triangle,
 // N rays), so both compute the same values, bit for bit. A ray parallel to a triangle
-// divides by zero and fails every comparison; an empty lane (NaN) likewise.
+// divides by zero and fails every comparison; an empty lane (NaN) likewise. N is the
+// triangle's own (Triangle::n), as `intersect` reads it.
 //
 // Most lanes miss, and most are rejected before any division: u >= 0 and v >= 0 are sign
 // tests of S·E2 and S·E1 against Dir·N (the same tests `intersect` makes), and u + v <= 1
@@ -68,16 +88,14 @@ template <class V>
 struct FastTerms {
   V tn, su, sv, den;  // T·N, S·E2, S·E1, Dir·N
 
-  MLIB_INLINE FastTerms(const V* v0, const V* v1, const V* v2, const V* org, const V* dir) {
+  MLIB_INLINE FastTerms(const TriangleLanes<V>& tri, const V* org, const V* dir) {
     V e1[3], e2[3], tv[3];
     for (int a = 0; a < 3; ++a) {
-      e1[a] = v0[a] - v1[a];   // E1 = V0 - V1
-      e2[a] = v2[a] - v0[a];   // E2 = V2 - V0
-      tv[a] = v0[a] - org[a];  // T = V0 - P
+      e1[a] = tri.v0[a] - tri.v1[a];  // E1 = V0 - V1
+      e2[a] = tri.v2[a] - tri.v0[a];  // E2 = V2 - V0
+      tv[a] = tri.v0[a] - org[a];     // T = V0 - P
     }
-    // N = E2 x E1, as Triangle::make computes it (cross(c - a, a - b)).
-    const V n[3] = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],
-                    e2[0] * e1[1] - e2[1] * e1[0]};
+    const V* n = tri.n;
     // S = T x Dir
     const V s[3] = {tv[1] * dir[2] - tv[2] * dir[1], tv[2] * dir[0] - tv[0] * dir[2],
                     tv[0] * dir[1] - tv[1] * dir[0]};
@@ -128,15 +146,9 @@ struct FastTriangleTest {
   };
 
   MLIB_INLINE Undivided undivided(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
-    vfloat4 v0[3], v1[3], v2[3];
-    for (int a = 0; a < 3; ++a) {
-      v0[a] = vfloat4::load(b.v0[a]);
-      v1[a] = vfloat4::load(b.v1[a]);
-      v2[a] = vfloat4::load(b.v2[a]);
-    }
     // Built in place and returned as one object: returning `{terms, terms.may_hit(...)}`
     // made GCC 12 copy the terms through memory, and single rays 12-14 % slower.
-    Undivided d{FastTerms<vfloat4>(v0, v1, v2, org, dir), 0};
+    Undivided d{FastTerms<vfloat4>(TriangleLanes<vfloat4>::load(b), org, dir), 0};
     d.may_hit = d.terms.may_hit(t_min, t_max);
     return d;
   }
@@ -171,10 +183,11 @@ struct FastTriangleTest {
 // The watertight test of Woop, Benthin and Wald (JCGT 2013) for the lanes of V, each lane
 // one (triangle, ray) pair sharing the axis order kx, ky, kz: the same shear (WatertightRay)
 // and edge functions as intersect_watertight, with its double precision re-evaluation for
-// a lane whose edge function is exactly zero. v0, v1, v2 and org are indexed by axis; sx,
-// sy, sz are the rays' shear. Shared by the four-triangle test below and the packet test
-// (triangle_packet_intersect.h), so both compute the same values, bit for bit. Returns the
-// lanes hit with t in (t_min, t_max], with their t, u, v (unset when no lane is hit).
+// a lane whose edge function is exactly zero (it reads the triangles' vertices, not their
+// normals). org is indexed by axis; sx, sy, sz are the rays' shear. Shared by the
+// four-triangle test below and the packet test (triangle_packet_intersect.h), so both
+// compute the same values, bit for bit. Returns the lanes hit with t in (t_min, t_max], with
+// their t, u, v (unset when no lane is hit).
 template <class V>
 struct WatertightLanes {
   // The paper's fallback: lanes with an edge function exactly 0 are recomputed in double.
@@ -193,9 +206,10 @@ struct WatertightLanes {
     eu = V::load(U), ev = V::load(Vv), ew = V::load(W);
   }
 
-  MLIB_INLINE static typename V::bool_type test(const V* v0, const V* v1, const V* v2,
-                                                const V* org, V sx, V sy, V sz, int kx, int ky,
-                                                int kz, V t_min, V t_max, V& t, V& u, V& v) {
+  MLIB_INLINE static typename V::bool_type test(const TriangleLanes<V>& tri, const V* org, V sx,
+                                                V sy, V sz, int kx, int ky, int kz, V t_min,
+                                                V t_max, V& t, V& u, V& v) {
+    const V *v0 = tri.v0, *v1 = tri.v1, *v2 = tri.v2;
     // Vertices relative to the origin, in the ray's permuted axes.
     const V az_ = v0[kz] - org[kz];
     const V bz_ = v1[kz] - org[kz];
@@ -259,14 +273,8 @@ struct WatertightTriangleTest {
  private:
   MLIB_INLINE vbool4 test(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
                           vfloat4& u, vfloat4& v) const {
-    vfloat4 v0[3], v1[3], v2[3];
-    for (int a = 0; a < 3; ++a) {
-      v0[a] = vfloat4::load(b.v0[a]);
-      v1[a] = vfloat4::load(b.v1[a]);
-      v2[a] = vfloat4::load(b.v2[a]);
-    }
-    return WatertightLanes<vfloat4>::test(v0, v1, v2, org, sx, sy, sz, ray.kx, ray.ky, ray.kz,
-                                          t_min, t_max, t, u, v);
+    return WatertightLanes<vfloat4>::test(TriangleLanes<vfloat4>::load(b), org, sx, sy, sz,
+                                          ray.kx, ray.ky, ray.kz, t_min, t_max, t, u, v);
   }
 };
 

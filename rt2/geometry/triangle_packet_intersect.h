@@ -48,33 +48,33 @@ struct FastPacketRays {
   const float (*org)[kPacketSize];
   const float (*dir)[kPacketSize];
 
-  // The lanes hit by the triangle (v0, v1, v2, broadcast) with t in (t_min, t_max], with
-  // their t, u, v.
-  MLIB_INLINE unsigned hits(const V* v0, const V* v1, const V* v2, int c, V t_min, V t_max,
-                            V& t, V& u, V& v) const {
+  // The lanes hit by the triangle `tri` (broadcast) with t in (t_min, t_max], with their t,
+  // u, v.
+  MLIB_INLINE unsigned hits(const TriangleLanes<V>& tri, int c, V t_min, V t_max, V& t, V& u,
+                            V& v) const {
     V o[3], d[3];
     for (int a = 0; a < 3; ++a) {
       o[a] = V::load(org[a] + c);
       d[a] = V::load(dir[a] + c);
     }
-    return test(v0, v1, v2, o, d, t_min, t_max, t, u, v);
+    return test(tri, o, d, t_min, t_max, t, u, v);
   }
   // The same for pairs: lane i takes ray ids[i / 4] of the packet (and the triangle the
   // caller put in lane i).
-  MLIB_INLINE unsigned hits_pairs(const V* v0, const V* v1, const V* v2, const std::uint32_t* ids,
-                                  V t_min, V t_max, V& t, V& u, V& v) const {
+  MLIB_INLINE unsigned hits_pairs(const TriangleLanes<V>& tri, const std::uint32_t* ids, V t_min,
+                                  V t_max, V& t, V& u, V& v) const {
     V o[3], d[3];
     for (int a = 0; a < 3; ++a) {
       o[a] = V::spread_quads(org[a], ids);
       d[a] = V::spread_quads(dir[a], ids);
     }
-    return test(v0, v1, v2, o, d, t_min, t_max, t, u, v);
+    return test(tri, o, d, t_min, t_max, t, u, v);
   }
 
  private:
-  MLIB_INLINE static unsigned test(const V* v0, const V* v1, const V* v2, const V* o, const V* d,
-                                   V t_min, V t_max, V& t, V& u, V& v) {
-    const FastTerms<V> terms(v0, v1, v2, o, d);
+  MLIB_INLINE static unsigned test(const TriangleLanes<V>& tri, const V* o, const V* d, V t_min,
+                                   V t_max, V& t, V& u, V& v) {
+    const FastTerms<V> terms(tri, o, d);
     const unsigned m = terms.may_hit(t_min, t_max);
     return m ? m & mlib::bits(terms.exact(t_min, t_max, t, u, v)) : 0u;
   }
@@ -124,20 +124,20 @@ struct WatertightPacketRays {
     return true;
   }
 
-  MLIB_INLINE unsigned hits(const V* v0, const V* v1, const V* v2, int c, V t_min, V t_max,
-                            V& t, V& u, V& v) const {
+  MLIB_INLINE unsigned hits(const TriangleLanes<V>& tri, int c, V t_min, V t_max, V& t, V& u,
+                            V& v) const {
     V o[3];
     for (int a = 0; a < 3; ++a) o[a] = V::load(org[a] + c);
-    return mlib::bits(WatertightLanes<V>::test(v0, v1, v2, o, V::load(sx + c), V::load(sy + c),
+    return mlib::bits(WatertightLanes<V>::test(tri, o, V::load(sx + c), V::load(sy + c),
                                                V::load(sz + c), kx, ky, kz, t_min, t_max, t, u,
                                                v));
   }
   // The same for pairs: lane i takes ray ids[i / 4] of the packet.
-  MLIB_INLINE unsigned hits_pairs(const V* v0, const V* v1, const V* v2, const std::uint32_t* ids,
-                                  V t_min, V t_max, V& t, V& u, V& v) const {
+  MLIB_INLINE unsigned hits_pairs(const TriangleLanes<V>& tri, const std::uint32_t* ids, V t_min,
+                                  V t_max, V& t, V& u, V& v) const {
     V o[3];
     for (int a = 0; a < 3; ++a) o[a] = V::spread_quads(org[a], ids);
-    return mlib::bits(WatertightLanes<V>::test(v0, v1, v2, o, V::spread_quads(sx, ids),
+    return mlib::bits(WatertightLanes<V>::test(tri, o, V::spread_quads(sx, ids),
                                                V::spread_quads(sy, ids), V::spread_quads(sz, ids),
                                                kx, ky, kz, t_min, t_max, t, u, v));
   }
@@ -152,13 +152,27 @@ struct TriangleMajorPacketTest {
   using V = mlib::vfloat<N>;
   Rays rays;
 
-  // The vertices of triangle `lane` of b, in every lane.
-  MLIB_INLINE static void broadcast(const TriangleBlock& b, int lane, V* v0, V* v1, V* v2) {
+  // Triangle `lane` of b, in every lane.
+  MLIB_INLINE static TriangleLanes<V> broadcast(const TriangleBlock& b, int lane) {
+    TriangleLanes<V> t;
     for (int a = 0; a < 3; ++a) {
-      v0[a] = V::broadcast(b.v0[a][lane]);
-      v1[a] = V::broadcast(b.v1[a][lane]);
-      v2[a] = V::broadcast(b.v2[a][lane]);
+      t.v0[a] = V::broadcast(b.v0[a][lane]);
+      t.v1[a] = V::broadcast(b.v1[a][lane]);
+      t.v2[a] = V::broadcast(b.v2[a][lane]);
+      t.n[a] = V::broadcast(b.n[a][lane]);
     }
+    return t;
+  }
+  // The four triangles of b, repeated across the lanes.
+  MLIB_INLINE static TriangleLanes<V> broadcast_quads(const TriangleBlock& b) {
+    TriangleLanes<V> t;
+    for (int a = 0; a < 3; ++a) {
+      t.v0[a] = V::broadcast_quad(b.v0[a]);
+      t.v1[a] = V::broadcast_quad(b.v1[a]);
+      t.v2[a] = V::broadcast_quad(b.v2[a]);
+      t.n[a] = V::broadcast_quad(b.n[a]);
+    }
+    return t;
   }
 
   // For each ray l of `lanes`: the hits in b with t in (t_min, hits[l].t] merged into
@@ -216,12 +230,7 @@ struct TriangleMajorPacketTest {
     const int pair_passes = (std::popcount(lanes) + kRaysPerPass - 1) / kRaysPerPass;
     const int triangle_passes = triangles * chunks;
     if (N == 4 ? pair_passes < triangle_passes : 2 * pair_passes <= triangle_passes) {
-      V v0[3], v1[3], v2[3];
-      for (int a = 0; a < 3; ++a) {
-        v0[a] = V::broadcast_quad(b.v0[a]);
-        v1[a] = V::broadcast_quad(b.v1[a]);
-        v2[a] = V::broadcast_quad(b.v2[a]);
-      }
+      const TriangleLanes<V> tri = broadcast_quads(b);
       // The rays in order, the last repeated to fill the final pass.
       std::uint32_t ids[kPacketSize + kRaysPerPass];
       int k = 0;
@@ -233,7 +242,7 @@ struct TriangleMajorPacketTest {
         // the pass's rays, and the block's triangles (its empty lanes' NaN vertices hit
         // nothing: masked all the same)
         constexpr unsigned kEveryQuad = N == 16 ? 0x1111u : N == 8 ? 0x11u : 0x1u;
-        unsigned m = rays.hits_pairs(v0, v1, v2, ids + p, t_min, V::spread_quads(t_upper, ids + p),
+        unsigned m = rays.hits_pairs(tri, ids + p, t_min, V::spread_quads(t_upper, ids + p),
                                      t, u, v) &
                      ((1u << (4 * here)) - 1) & (((1u << triangles) - 1) * kEveryQuad);
         if (!m) continue;
@@ -251,13 +260,12 @@ struct TriangleMajorPacketTest {
     for (int j = 0; j < TriangleBlock::kLanes && lanes; ++j) {
       const std::uint32_t prim = b.prim_of(j);
       if (prim == TriangleBlock::kNoPrim) break;  // empty lanes come last
-      V v0[3], v1[3], v2[3];
-      broadcast(b, j, v0, v1, v2);
+      const TriangleLanes<V> tri = broadcast(b, j);
       for (int c = 0; c < kPacketSize; c += N) {
         const unsigned chunk = lanes >> c & ((1u << N) - 1);
         if (!chunk) continue;
         V t = V::broadcast(0.0f), u = t, v = t;  // set by hits() where it hits (GCC cannot tell)
-        unsigned m = rays.hits(v0, v1, v2, c, t_min, V::load(t_upper + c), t, u, v) & chunk;
+        unsigned m = rays.hits(tri, c, t_min, V::load(t_upper + c), t, u, v) & chunk;
         if (!m) continue;
         alignas(64) float ts[N], us[N], vs[N];
         t.store(ts), u.store(us), v.store(vs);
