@@ -53,23 +53,31 @@ MLIB_INLINE NearestHit nearest_lane(vbool4 hit, vfloat4 t, vfloat4 u, vfloat4 v)
   return n;
 }
 
-// The triangles of V's lanes (a block's four; one triangle in every lane; a block's four
-// repeated), each coordinate a vector: what the tests below read.
-template <class V>
-struct TriangleLanes {
-  V v0[3], v1[3], v2[3], n[3];  // [axis]
+// How the lanes of V take the triangles of a block: lane i triangle i (V = vfloat4), one
+// triangle in every lane (a packet test), or the four repeated across the lanes (pairs).
+enum class LaneMap { own, one, quads };
 
-  // The four triangles of b (V = vfloat4).
-  MLIB_INLINE static TriangleLanes load(const TriangleBlock& b) {
-    TriangleLanes t;
-    for (int a = 0; a < 3; ++a) {
-      t.v0[a] = V::load(b.v0[a]);
-      t.v1[a] = V::load(b.v1[a]);
-      t.v2[a] = V::load(b.v2[a]);
-      t.n[a] = V::load(b.n[a]);
-    }
-    return t;
+// The triangles of V's lanes, read from the block where the tests use them: a coordinate
+// picked by an axis known only at run time (the watertight test's kx, ky, kz) is one load
+// from the block, not an index into a copy of it that the compiler would have to keep in
+// memory. v0(a), v1(a), v2(a): coordinate a of the vertices; n(a): of the normal.
+template <class V, LaneMap M>
+struct TriangleLanes {
+  const TriangleBlock& b;
+  int lane = 0;  // LaneMap::one: the triangle
+
+  MLIB_INLINE V read(const float (&row)[TriangleBlock::kLanes]) const {
+    if constexpr (M == LaneMap::own)
+      return V::load(row);
+    else if constexpr (M == LaneMap::one)
+      return V::broadcast(row[lane]);
+    else
+      return V::broadcast_quad(row);
   }
+  MLIB_INLINE V v0(int a) const { return read(b.v0[a]); }
+  MLIB_INLINE V v1(int a) const { return read(b.v1[a]); }
+  MLIB_INLINE V v2(int a) const { return read(b.v2[a]); }
+  MLIB_INLINE V n(int a) const { return read(b.n[a]); }
 };
 
 // The thesis's test (formula 10) for the lanes of V, each lane one (triangle, ray) pair,
@@ -88,14 +96,16 @@ template <class V>
 struct FastTerms {
   V tn, su, sv, den;  // T·N, S·E2, S·E1, Dir·N
 
-  MLIB_INLINE FastTerms(const TriangleLanes<V>& tri, const V* org, const V* dir) {
-    V e1[3], e2[3], tv[3];
+  template <LaneMap M>
+  MLIB_INLINE FastTerms(const TriangleLanes<V, M>& tri, const V* org, const V* dir) {
+    V e1[3], e2[3], tv[3], n[3];
     for (int a = 0; a < 3; ++a) {
-      e1[a] = tri.v0[a] - tri.v1[a];  // E1 = V0 - V1
-      e2[a] = tri.v2[a] - tri.v0[a];  // E2 = V2 - V0
-      tv[a] = tri.v0[a] - org[a];     // T = V0 - P
+      const V v0 = tri.v0(a);
+      e1[a] = v0 - tri.v1(a);   // E1 = V0 - V1
+      e2[a] = tri.v2(a) - v0;   // E2 = V2 - V0
+      tv[a] = v0 - org[a];      // T = V0 - P
+      n[a] = tri.n(a);
     }
-    const V* n = tri.n;
     // S = T x Dir
     const V s[3] = {tv[1] * dir[2] - tv[2] * dir[1], tv[2] * dir[0] - tv[0] * dir[2],
                     tv[0] * dir[1] - tv[1] * dir[0]};
@@ -148,7 +158,7 @@ struct FastTriangleTest {
   MLIB_INLINE Undivided undivided(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
     // Built in place and returned as one object: returning `{terms, terms.may_hit(...)}`
     // made GCC 12 copy the terms through memory, and single rays 12-14 % slower.
-    Undivided d{FastTerms<vfloat4>(TriangleLanes<vfloat4>::load(b), org, dir), 0};
+    Undivided d{FastTerms<vfloat4>(TriangleLanes<vfloat4, LaneMap::own>{b}, org, dir), 0};
     d.may_hit = d.terms.may_hit(t_min, t_max);
     return d;
   }
@@ -190,43 +200,50 @@ struct FastTriangleTest {
 // their t, u, v (unset when no lane is hit).
 template <class V>
 struct WatertightLanes {
-  // The paper's fallback: lanes with an edge function exactly 0 are recomputed in double.
-  [[gnu::noinline]] static void refine_in_double(unsigned lanes, V ax, V ay, V bx, V by, V cx,
-                                                 V cy, V& eu, V& ev, V& ew) {
+  // The edge functions U, V, W of every lane recomputed in double precision (the paper's
+  // fallback for lanes with an edge function exactly 0). Out of line and returned by value:
+  // the common path keeps its edge functions in registers.
+  struct Edges {
+    V u, v, w;
+  };
+  [[gnu::noinline]] static Edges in_double(V ax, V ay, V bx, V by, V cx, V cy) {
     constexpr int n = V::size;
     alignas(64) float Ax[n], Ay[n], Bx[n], By[n], Cx[n], Cy[n], U[n], W[n], Vv[n];
     ax.store(Ax), ay.store(Ay), bx.store(Bx), by.store(By), cx.store(Cx), cy.store(Cy);
-    eu.store(U), ev.store(Vv), ew.store(W);
     for (int l = 0; l < n; ++l) {
-      if (!(lanes >> l & 1)) continue;
       U[l] = static_cast<float>(double(Cx[l]) * By[l] - double(Cy[l]) * Bx[l]);
       Vv[l] = static_cast<float>(double(Ax[l]) * Cy[l] - double(Ay[l]) * Cx[l]);
       W[l] = static_cast<float>(double(Bx[l]) * Ay[l] - double(By[l]) * Ax[l]);
     }
-    eu = V::load(U), ev = V::load(Vv), ew = V::load(W);
+    return {V::load(U), V::load(Vv), V::load(W)};
   }
 
-  MLIB_INLINE static typename V::bool_type test(const TriangleLanes<V>& tri, const V* org, V sx,
-                                                V sy, V sz, int kx, int ky, int kz, V t_min,
-                                                V t_max, V& t, V& u, V& v) {
-    const V *v0 = tri.v0, *v1 = tri.v1, *v2 = tri.v2;
+  template <LaneMap M>
+  MLIB_INLINE static typename V::bool_type test(const TriangleLanes<V, M>& tri, const V* org,
+                                                V sx, V sy, V sz, int kx, int ky, int kz,
+                                                V t_min, V t_max, V& t, V& u, V& v) {
     // Vertices relative to the origin, in the ray's permuted axes.
-    const V az_ = v0[kz] - org[kz];
-    const V bz_ = v1[kz] - org[kz];
-    const V cz_ = v2[kz] - org[kz];
+    const V az_ = tri.v0(kz) - org[kz];
+    const V bz_ = tri.v1(kz) - org[kz];
+    const V cz_ = tri.v2(kz) - org[kz];
     // ... and sheared into the ray's 2D frame.
-    const V ax = (v0[kx] - org[kx]) - sx * az_;
-    const V ay = (v0[ky] - org[ky]) - sy * az_;
-    const V bx = (v1[kx] - org[kx]) - sx * bz_;
-    const V by = (v1[ky] - org[ky]) - sy * bz_;
-    const V cx = (v2[kx] - org[kx]) - sx * cz_;
-    const V cy = (v2[ky] - org[ky]) - sy * cz_;
+    const V ax = (tri.v0(kx) - org[kx]) - sx * az_;
+    const V ay = (tri.v0(ky) - org[ky]) - sy * az_;
+    const V bx = (tri.v1(kx) - org[kx]) - sx * bz_;
+    const V by = (tri.v1(ky) - org[ky]) - sy * bz_;
+    const V cx = (tri.v2(kx) - org[kx]) - sx * cz_;
+    const V cy = (tri.v2(ky) - org[ky]) - sy * cz_;
     V eu = cx * by - cy * bx;
     V ev = ax * cy - ay * cx;
     V ew = bx * ay - by * ax;
     const V zero = V::broadcast(0.0f);
-    const unsigned on_edge = mlib::bits((eu == zero) | (ev == zero) | (ew == zero));
-    if (on_edge) refine_in_double(on_edge, ax, ay, bx, by, cx, cy, eu, ev, ew);
+    const auto on_edge = (eu == zero) | (ev == zero) | (ew == zero);
+    if (mlib::bits(on_edge)) {  // those lanes' three edge functions in double
+      const Edges d = in_double(ax, ay, bx, by, cx, cy);
+      eu = select(on_edge, d.u, eu);
+      ev = select(on_edge, d.v, ev);
+      ew = select(on_edge, d.w, ew);
+    }
     const auto outside = ((eu < zero) | (ev < zero) | (ew < zero)) &
                          ((eu > zero) | (ev > zero) | (ew > zero));
     const V det = (eu + ev) + ew;
@@ -273,8 +290,8 @@ struct WatertightTriangleTest {
  private:
   MLIB_INLINE vbool4 test(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
                           vfloat4& u, vfloat4& v) const {
-    return WatertightLanes<vfloat4>::test(TriangleLanes<vfloat4>::load(b), org, sx, sy, sz,
-                                          ray.kx, ray.ky, ray.kz, t_min, t_max, t, u, v);
+    return WatertightLanes<vfloat4>::test(TriangleLanes<vfloat4, LaneMap::own>{b}, org, sx, sy,
+                                          sz, ray.kx, ray.ky, ray.kz, t_min, t_max, t, u, v);
   }
 };
 

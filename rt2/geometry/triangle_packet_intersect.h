@@ -50,7 +50,8 @@ struct FastPacketRays {
 
   // The lanes hit by the triangle `tri` (broadcast) with t in (t_min, t_max], with their t,
   // u, v.
-  MLIB_INLINE unsigned hits(const TriangleLanes<V>& tri, int c, V t_min, V t_max, V& t, V& u,
+  template <LaneMap M>
+  MLIB_INLINE unsigned hits(const TriangleLanes<V, M>& tri, int c, V t_min, V t_max, V& t, V& u,
                             V& v) const {
     V o[3], d[3];
     for (int a = 0; a < 3; ++a) {
@@ -61,7 +62,8 @@ struct FastPacketRays {
   }
   // The same for pairs: lane i takes ray ids[i / 4] of the packet (and the triangle the
   // caller put in lane i).
-  MLIB_INLINE unsigned hits_pairs(const TriangleLanes<V>& tri, const std::uint32_t* ids, V t_min,
+  template <LaneMap M>
+  MLIB_INLINE unsigned hits_pairs(const TriangleLanes<V, M>& tri, const std::uint32_t* ids, V t_min,
                                   V t_max, V& t, V& u, V& v) const {
     V o[3], d[3];
     for (int a = 0; a < 3; ++a) {
@@ -72,7 +74,8 @@ struct FastPacketRays {
   }
 
  private:
-  MLIB_INLINE static unsigned test(const TriangleLanes<V>& tri, const V* o, const V* d, V t_min,
+  template <LaneMap M>
+  MLIB_INLINE static unsigned test(const TriangleLanes<V, M>& tri, const V* o, const V* d, V t_min,
                                    V t_max, V& t, V& u, V& v) {
     const FastTerms<V> terms(tri, o, d);
     const unsigned m = terms.may_hit(t_min, t_max);
@@ -124,7 +127,8 @@ struct WatertightPacketRays {
     return true;
   }
 
-  MLIB_INLINE unsigned hits(const TriangleLanes<V>& tri, int c, V t_min, V t_max, V& t, V& u,
+  template <LaneMap M>
+  MLIB_INLINE unsigned hits(const TriangleLanes<V, M>& tri, int c, V t_min, V t_max, V& t, V& u,
                             V& v) const {
     V o[3];
     for (int a = 0; a < 3; ++a) o[a] = V::load(org[a] + c);
@@ -133,7 +137,8 @@ struct WatertightPacketRays {
                                                v));
   }
   // The same for pairs: lane i takes ray ids[i / 4] of the packet.
-  MLIB_INLINE unsigned hits_pairs(const TriangleLanes<V>& tri, const std::uint32_t* ids, V t_min,
+  template <LaneMap M>
+  MLIB_INLINE unsigned hits_pairs(const TriangleLanes<V, M>& tri, const std::uint32_t* ids, V t_min,
                                   V t_max, V& t, V& u, V& v) const {
     V o[3];
     for (int a = 0; a < 3; ++a) o[a] = V::spread_quads(org[a], ids);
@@ -151,29 +156,6 @@ template <int N, class Rays>
 struct TriangleMajorPacketTest {
   using V = mlib::vfloat<N>;
   Rays rays;
-
-  // Triangle `lane` of b, in every lane.
-  MLIB_INLINE static TriangleLanes<V> broadcast(const TriangleBlock& b, int lane) {
-    TriangleLanes<V> t;
-    for (int a = 0; a < 3; ++a) {
-      t.v0[a] = V::broadcast(b.v0[a][lane]);
-      t.v1[a] = V::broadcast(b.v1[a][lane]);
-      t.v2[a] = V::broadcast(b.v2[a][lane]);
-      t.n[a] = V::broadcast(b.n[a][lane]);
-    }
-    return t;
-  }
-  // The four triangles of b, repeated across the lanes.
-  MLIB_INLINE static TriangleLanes<V> broadcast_quads(const TriangleBlock& b) {
-    TriangleLanes<V> t;
-    for (int a = 0; a < 3; ++a) {
-      t.v0[a] = V::broadcast_quad(b.v0[a]);
-      t.v1[a] = V::broadcast_quad(b.v1[a]);
-      t.v2[a] = V::broadcast_quad(b.v2[a]);
-      t.n[a] = V::broadcast_quad(b.n[a]);
-    }
-    return t;
-  }
 
   // For each ray l of `lanes`: the hits in b with t in (t_min, hits[l].t] merged into
   // hits[l] (`replaces`); t_best[l] mirrors hits[l].t (64-byte aligned).
@@ -230,7 +212,7 @@ struct TriangleMajorPacketTest {
     const int pair_passes = (std::popcount(lanes) + kRaysPerPass - 1) / kRaysPerPass;
     const int triangle_passes = triangles * chunks;
     if (N == 4 ? pair_passes < triangle_passes : 2 * pair_passes <= triangle_passes) {
-      const TriangleLanes<V> tri = broadcast_quads(b);
+      const TriangleLanes<V, LaneMap::quads> tri{b};
       // The rays in order, the last repeated to fill the final pass.
       std::uint32_t ids[kPacketSize + kRaysPerPass];
       int k = 0;
@@ -260,7 +242,7 @@ struct TriangleMajorPacketTest {
     for (int j = 0; j < TriangleBlock::kLanes && lanes; ++j) {
       const std::uint32_t prim = b.prim_of(j);
       if (prim == TriangleBlock::kNoPrim) break;  // empty lanes come last
-      const TriangleLanes<V> tri = broadcast(b, j);
+      const TriangleLanes<V, LaneMap::one> tri{b, j};
       for (int c = 0; c < kPacketSize; c += N) {
         const unsigned chunk = lanes >> c & ((1u << N) - 1);
         if (!chunk) continue;

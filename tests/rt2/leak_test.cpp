@@ -189,6 +189,55 @@ TEST(Leak, WatertightTestDecidesExactEdgeHitsConsistentlyForBothNeighbours) {
   }
 }
 
+TEST(Leak, EdgeFunctionZeroInFloatIsDecidedInDoubleByEveryKernel) {
+  // A ray along z through the line of edge BC, off it by 2^-46 in the edge function: in
+  // float, U = cx by - cy bx rounds to exactly 0 and the ray would count as on the edge (a
+  // hit); in double, U = -2^-46 has the other sign than V and W, and the ray misses. The
+  // paper's fallback decides such lanes in double; every kernel must (the one-triangle
+  // test, the four-triangle block of every ISA, the packet forms triangle by triangle and
+  // by (ray, triangle) pairs), from above and from below. Three triangles far away fill the
+  // block, so that a packet of four rays takes the pairs form.
+  const float e = 0x1p-23f;
+  const vec4 a(-1.0f, 1.0f, 1.0f), b(1.0f, 1.0f + e, 1.0f), c(-(1.0f + e), -(1.0f + 2 * e), 1.0f);
+  volatile float cx = c[0], cy = c[1], bx = b[0], by = b[1];  // the float products, unfolded
+  ASSERT_EQ(cx * by - cy * bx, 0.0f);
+  ASSERT_LT(double(c[0]) * b[1] - double(c[1]) * b[0], 0.0);
+  Mesh m;
+  m.positions = {a, b, c};
+  m.faces = {{0, 1, 2}};
+  for (int k = 1; k <= 3; ++k) {
+    const float x = 100.0f * k;
+    const auto first = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), {vec4(x, 0, 1), vec4(x + 1, 0, 1), vec4(x, 1, 1)});
+    m.faces.push_back({first, first + 1, first + 2});
+  }
+  m.face_materials.assign(m.faces.size(), 0);
+  const Scene scene = test::geometry_scene({m});
+  for (const Ray& ray : {Ray(vec4(0, 0, 0), vec4(0, 0, 1)), Ray(vec4(0, 0, 2), vec4(0, 0, -1))}) {
+    float t, u, v;
+    EXPECT_FALSE(intersect_watertight(Triangle::make(a, b, c), WatertightRay(ray), 0.0f, kInfinity,
+                                      t, u, v));
+    for (Isa isa : test::runnable_isas()) {
+      const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+      EXPECT_FALSE(trace_closest(acc, ray, kInfinity, kTight).found()) << isa_name(isa);
+      EXPECT_FALSE(trace_occluded(acc, ray, kInfinity, kTight)) << isa_name(isa);
+      for (std::uint32_t n : {4u, 16u}) {  // pairs, then triangle by triangle
+        const std::vector<Ray> rays(n, ray);
+        const std::vector<float> t_max(n, kInfinity);
+        const std::uint32_t begin[2] = {0, n};
+        std::vector<Hit> hits(n);
+        std::vector<std::uint8_t> occluded(n, 7);
+        trace_closest_packets(acc, kTight, rays.data(), t_max.data(), begin, 1, hits.data());
+        trace_occluded_packets(acc, kTight, rays.data(), t_max.data(), begin, 1, occluded.data());
+        for (std::uint32_t l = 0; l < n; ++l) {
+          EXPECT_FALSE(hits[l].found()) << isa_name(isa) << " packet of " << n << ", ray " << l;
+          EXPECT_EQ(occluded[l], 0) << isa_name(isa) << " packet of " << n << ", ray " << l;
+        }
+      }
+    }
+  }
+}
+
 // --- spheres at the extremes ------------------------------------------------------------
 // Squared distance, in double, from the sphere's centre to the line of the float ray:
 // |oc x d|^2 / |d|^2, which does not cancel the way |oc|^2 - (oc·d)^2 would.
