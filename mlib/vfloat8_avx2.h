@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "mlib/simd.h"  // MLIB_INLINE
+#include "mlib/vfloat4_sse41.h"
 
 #if !defined(__AVX2__)
 #error "mlib/vfloat8_avx2.h needs AVX2: include it only from a translation unit built for it"
@@ -37,6 +38,12 @@ struct vfloat8 {
   MLIB_INLINE void store(float* p) const { _mm256_store_ps(p, v); }
   MLIB_INLINE static vfloat8 loadu(const void* p) { return {_mm256_loadu_ps(static_cast<const float*>(p))}; }
   MLIB_INLINE void storeu(void* p) const { _mm256_storeu_ps(static_cast<float*>(p), v); }
+  // lo[0 ... 3] in lanes 0 ... 3 and hi[0 ... 3] in lanes 4 ... 7 (each 16-byte aligned).
+  MLIB_INLINE static vfloat8 load_halves(const float* lo, const float* hi) {
+    return {_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lo)), _mm_load_ps(hi), 1)};
+  }
+  // lo's lanes in lanes 0 ... 3 and hi's in 4 ... 7.
+  MLIB_INLINE static vfloat8 from_halves(vfloat4 lo, vfloat4 hi) { return {_mm256_set_m128(hi.v, lo.v)}; }
   // p[0 ... 3] in every four lanes.
   MLIB_INLINE static vfloat8 broadcast_quad(const float* p) {
     return {_mm256_broadcast_ps(reinterpret_cast<const __m128*>(p))};

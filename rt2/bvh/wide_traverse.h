@@ -156,6 +156,17 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
   int sp = 0;
   std::uint32_t ref = bvh.root;
   alignas(64) float entry_t[N];
+  // Takes the hit n, lane `lane` of block b, when it is nearer than h (or as near, with a
+  // smaller triangle index).
+  const auto take = [&h](const TriangleBlock& b, const NearestHit& n, int lane) {
+    const std::uint32_t prim = b.prim_of(lane);
+    if (n.t < h.t || (n.t == h.t && h.found() && prim < h.prim)) {
+      h.t = n.t;
+      h.u = n.u;
+      h.v = n.v;
+      h.prim = prim;
+    }
+  };
   for (;;) {
     // Down through inner nodes, nearest child first.
     while (!(ref & kLeaf)) {
@@ -187,6 +198,19 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
                                        // without a branch (a mispredicted one costs more
                                        // than the whole node test)
         const StackEntry a{node.child[i], entry_t[i]}, b{node.child[i1], entry_t[i1]};
+        if constexpr (N == 8) {
+          if (a.ref & b.ref & kLeaf) {  // two leaves: their first blocks in one 8-wide pass
+            const TriangleBlock* ba = blocks + (a.ref & ~kLeaf);
+            const TriangleBlock* bb = blocks + (b.ref & ~kLeaf);
+            local.blocks += 2;
+            const NearestHit n = test.nearest_pair(*ba, *bb, t_min_v, V::broadcast(h.t));
+            if (n.lane >= 0) take(n.lane < 4 ? *ba : *bb, n, n.lane & 3);
+            // A leaf of more blocks: the rest of it, as a leaf of its own, later.
+            if (!ba->last()) stack_ref[sp] = a.ref + 1, stack_t[sp++] = a.t;
+            if (!bb->last()) stack_ref[sp] = b.ref + 1, stack_t[sp++] = b.t;
+            goto pop;
+          }
+        }
         const bool a_first = a.t <= b.t;
         const StackEntry farther = a_first ? b : a;
         stack_ref[sp] = farther.ref;
@@ -217,15 +241,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
       ++local.blocks;
       const NearestHit n = test.nearest(*b, t_min_4, vfloat4::broadcast(h.t));
-      if (n.lane >= 0) {
-        const std::uint32_t prim = b->prim_of(n.lane);
-        if (n.t < h.t || (n.t == h.t && h.found() && prim < h.prim)) {
-          h.t = n.t;
-          h.u = n.u;
-          h.v = n.v;
-          h.prim = prim;
-        }
-      }
+      if (n.lane >= 0) take(*b, n, n.lane);
       if (b->last()) break;
     }
   pop:

@@ -80,6 +80,46 @@ struct TriangleLanes {
   MLIB_INLINE V n(int a) const { return read(b.n[a]); }
 };
 
+// Two blocks in the eight lanes of V = vfloat8: a's triangles in lanes 0 ... 3, b's in
+// 4 ... 7 (the leaf pairs of the 8-wide walks, wide_traverse.h). Read as TriangleLanes.
+template <class V>
+struct BlockPairLanes {
+  const TriangleBlock& a;
+  const TriangleBlock& b;
+
+  MLIB_INLINE V v0(int k) const { return V::load_halves(a.v0[k], b.v0[k]); }
+  MLIB_INLINE V v1(int k) const { return V::load_halves(a.v1[k], b.v1[k]); }
+  MLIB_INLINE V v2(int k) const { return V::load_halves(a.v2[k], b.v2[k]); }
+  MLIB_INLINE V n(int k) const { return V::load_halves(a.n[k], b.n[k]); }
+};
+
+// A vfloat4 of one ray's values in both halves of a V = vfloat8.
+template <class V>
+MLIB_INLINE V both_halves(vfloat4 x) {
+  return V::from_halves(x, x);
+}
+
+// The nearest lane hit of a block pair (BlockPairLanes): ties at equal t go to the smaller
+// triangle index, as between two blocks tested one after the other (the two blocks' indices
+// are not ordered).
+template <class V>
+MLIB_INLINE NearestHit nearest_lane_of_pair(typename V::bool_type hit, V t, V u, V v,
+                                            const TriangleBlock& a, const TriangleBlock& b) {
+  NearestHit n;
+  const V tm = select(hit, t, V::broadcast(kInfinity));
+  const unsigned at = mlib::bits(hit & (tm == mlib::reduce_min(tm)));
+  if (!at) return n;
+  n.lane = std::countr_zero(at);
+  for (unsigned m = at & (at - 1); m; m &= m - 1) {  // a tie: rare
+    const int l = std::countr_zero(m);
+    if ((l < 4 ? a : b).prim_of(l & 3) < (n.lane < 4 ? a : b).prim_of(n.lane & 3)) n.lane = l;
+  }
+  alignas(32) float ts[V::size], us[V::size], vs[V::size];
+  t.store(ts), u.store(us), v.store(vs);
+  n.t = ts[n.lane], n.u = us[n.lane], n.v = vs[n.lane];
+  return n;
+}
+
 // The thesis's test (formula 10) for the lanes of V, each lane one (triangle, ray) pair,
 // computing what `intersect` (triangle.h) computes. Shared by the four-triangle test below
 // (four triangles, one ray) and the packet test (triangle_packet_intersect.h: one triangle,
@@ -96,8 +136,9 @@ template <class V>
 struct FastTerms {
   V tn, su, sv, den;  // T·N, S·E2, S·E1, Dir·N
 
-  template <LaneMap M>
-  MLIB_INLINE FastTerms(const TriangleLanes<V, M>& tri, const V* org, const V* dir) {
+  // tri: TriangleLanes or BlockPairLanes.
+  template <class Tri>
+  MLIB_INLINE FastTerms(const Tri& tri, const V* org, const V* dir) {
     V e1[3], e2[3], tv[3], n[3];
     for (int a = 0; a < 3; ++a) {
       const V v0 = tri.v0(a);
@@ -188,6 +229,20 @@ struct FastTriangleTest {
     const vbool4 hit = exact(d, t_min, t_max, t, u, v);
     return nearest_lane(hit, t, u, v);
   }
+
+  // The nearest lane hit of blocks a and b at once, a's triangles in lanes 0 ... 3 and b's
+  // in 4 ... 7 (V = vfloat8), with t in (t_min, t_max].
+  template <class V>
+  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                      V t_max) const {
+    V o[3], d[3];
+    for (int k = 0; k < 3; ++k) o[k] = both_halves<V>(org[k]), d[k] = both_halves<V>(dir[k]);
+    const FastTerms<V> terms(BlockPairLanes<V>{a, b}, o, d);
+    if (!terms.may_hit(t_min, t_max)) return {};
+    V t, u, v;
+    const auto hit = terms.exact(t_min, t_max, t, u, v);
+    return nearest_lane_of_pair(hit, t, u, v, a, b);
+  }
 };
 
 // The watertight test of Woop, Benthin and Wald (JCGT 2013) for the lanes of V, each lane
@@ -218,8 +273,8 @@ struct WatertightLanes {
     return {V::load(U), V::load(Vv), V::load(W)};
   }
 
-  template <LaneMap M>
-  MLIB_INLINE static typename V::bool_type test(const TriangleLanes<V, M>& tri, const V* org,
+  template <class Tri>  // TriangleLanes or BlockPairLanes
+  MLIB_INLINE static typename V::bool_type test(const Tri& tri, const V* org,
                                                 V sx, V sy, V sz, int kx, int ky, int kz,
                                                 V t_min, V t_max, V& t, V& u, V& v) {
     // Vertices relative to the origin, in the ray's permuted axes.
@@ -285,6 +340,20 @@ struct WatertightTriangleTest {
     const vbool4 hit = test(b, t_min, t_max, t, u, v);
     if (!mlib::bits(hit)) return {};
     return nearest_lane(hit, t, u, v);
+  }
+
+  // The nearest lane hit of blocks a and b at once (see FastTriangleTest::nearest_pair).
+  template <class V>
+  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                      V t_max) const {
+    V o[3];
+    for (int k = 0; k < 3; ++k) o[k] = both_halves<V>(org[k]);
+    V t, u, v;
+    const auto hit = WatertightLanes<V>::test(BlockPairLanes<V>{a, b}, o, both_halves<V>(sx),
+                                              both_halves<V>(sy), both_halves<V>(sz), ray.kx,
+                                              ray.ky, ray.kz, t_min, t_max, t, u, v);
+    if (!mlib::bits(hit)) return {};
+    return nearest_lane_of_pair(hit, t, u, v, a, b);
   }
 
  private:

@@ -151,6 +151,20 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
   for (int i = 0; i < N; ++i)
     expect(std::bit_cast<std::uint32_t>(out[i]) == std::bit_cast<std::uint32_t>(sixteen[ids[i / 4]]),
            "spread_quads", i);
+  if constexpr (N == 8) {  // load_halves and from_halves: two quads, lanes 0-3 and 4-7
+    const float* lo = sixteen + 4;
+    const float* hi = sixteen + 12;
+    V::load_halves(lo, hi).store(out);
+    for (int i = 0; i < N; ++i)
+      expect(std::bit_cast<std::uint32_t>(out[i]) ==
+                 std::bit_cast<std::uint32_t>(i < 4 ? lo[i] : hi[i - 4]),
+             "load_halves", i);
+    V::from_halves(vfloat4::load(hi), vfloat4::load(lo)).store(out);
+    for (int i = 0; i < N; ++i)
+      expect(std::bit_cast<std::uint32_t>(out[i]) ==
+                 std::bit_cast<std::uint32_t>(i < 4 ? hi[i] : lo[i - 4]),
+             "from_halves", i);
+  }
   alignas(64) float buffer[N + 1];
   for (int i = 0; i <= N; ++i) buffer[i] = float(-i);
   const V u = V::loadu(buffer + 1);

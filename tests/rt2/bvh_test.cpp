@@ -70,6 +70,63 @@ INSTANTIATE_TEST_SUITE_P(LeafSizesAndSplits, BvhVsBruteForce,
                                             ::testing::Values(Split::midpoint, Split::sah)),
                          leaf_and_split_name);
 
+TEST(Bvh, TiesAtEqualTGoToTheSmallerIndexWhateverTheLeavesAndSlotsOrder) {
+  // Overlapping triangles in the plane z = 1, shot exactly along +z: the fast test computes
+  // t = N.z / N.z = 1 for every one of them, so nearly every ray hits several at the same t
+  // and the smaller index must win, whichever leaf, block, lane or node slot holds it (the
+  // 8-wide walks test two leaves at once, where the two blocks' indices are not ordered).
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Mesh m;
+  for (std::uint32_t i = 0; i < 400; ++i) {
+    const float cx = u(rng), cy = u(rng);
+    for (int k = 0; k < 3; ++k)
+      m.positions.push_back(vec4(cx + 0.4f * (u(rng) - 0.5f), cy + 0.4f * (u(rng) - 0.5f), 1.0f));
+    m.faces.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+  }
+  m.face_materials.assign(m.faces.size(), 0);
+  m.drop_degenerate();
+  const Scene scene = test::geometry_scene({m});
+  std::vector<Ray> rays;
+  for (int i = 0; i < 20000 / kSampleScale; ++i)
+    rays.push_back(Ray(vec4(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.0f), vec4(0, 0, 1)));
+  for (std::uint32_t leaf : {1u, 2u, 4u}) {
+    const BvhConfig config{leaf, Split::sah, 16};
+    EXPECT_GT(expect_closest_equals_brute_force(scene, config, rays), rays.size() * 9 / 10) << leaf;
+  }
+}
+
+TEST(Bvh, TwoLeavesOfSeveralBlocksTestedTogetherFindHitsInEveryBlock) {
+  // Two stacks of twelve parallel triangles, far apart along x, each one leaf of three
+  // blocks (max leaf size 16): a ray along the x axis enters both leaves and no other child,
+  // so the 8-wide walks test the two leaves' first blocks together and the rest of each
+  // leaf after. The stacks' triangles come in a shuffled order, so that the nearest one
+  // lies in a later block for some seeds and rays.
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    Mesh m;
+    std::vector<float> xs;
+    for (int i = 0; i < 12; ++i) xs.push_back(0.01f * float(i)), xs.push_back(10.0f + 0.01f * float(i));
+    std::shuffle(xs.begin(), xs.end(), std::mt19937(seed));
+    for (float x : xs) {
+      const auto first = static_cast<std::uint32_t>(m.positions.size());
+      m.positions.insert(m.positions.end(), {vec4(x, -1, -1), vec4(x, 3, -1), vec4(x, -1, 3)});
+      m.faces.push_back({first, first + 1, first + 2});
+    }
+    m.face_materials.assign(m.faces.size(), 0);
+    const Scene scene = test::geometry_scene({m});
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Ray> rays;
+    for (int i = 0; i < 200; ++i) {
+      rays.push_back(Ray(vec4(-1.0f, u(rng), u(rng)), vec4(1, 0, 0)));
+      rays.push_back(Ray(vec4(11.0f, u(rng), u(rng)), vec4(-1, 0, 0)));
+    }
+    EXPECT_EQ(expect_closest_equals_brute_force(scene, BvhConfig{16, Split::sah, 16}, rays),
+              rays.size())
+        << seed;
+  }
+}
+
 TEST(Bvh, ClosestHitEqualsBruteForceOnTheChairMesh) {
   Scene scene = make_default_scene();
   scene.planes.clear();
