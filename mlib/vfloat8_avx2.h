@@ -43,7 +43,9 @@ struct vfloat8 {
     return {_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lo)), _mm_load_ps(hi), 1)};
   }
   // lo's lanes in lanes 0 ... 3 and hi's in 4 ... 7.
-  MLIB_INLINE static vfloat8 from_halves(vfloat4 lo, vfloat4 hi) { return {_mm256_set_m128(hi.v, lo.v)}; }
+  MLIB_INLINE static vfloat8 from_halves(vfloat4 lo, vfloat4 hi) {
+    return {_mm256_set_m128(hi.v, lo.v)};
+  }
   // p[0 ... 3] in every four lanes.
   MLIB_INLINE static vfloat8 broadcast_quad(const float* p) {
     return {_mm256_broadcast_ps(reinterpret_cast<const __m128*>(p))};
