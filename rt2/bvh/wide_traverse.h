@@ -128,7 +128,10 @@ inline constexpr bool kPushInOctantOrder =
 // the first one would stall anyway, the others then arrive during that wait.
 template <int N>
 inline constexpr int kNodeLines = int(sizeof(WideNode<N>) / 64);
-inline constexpr int kBlockLines = 4;
+// A block starts anywhere its alignment allows, so it may reach into one line more.
+inline constexpr int kBlockLines =
+    int((sizeof(TriangleBlock) + (64 - alignof(TriangleBlock)) + 63) / 64);
+static_assert(kBlockLines == 4);
 
 template <int N>
 MLIB_INLINE void prefetch_ref(const WideBvh<N>& bvh, const TriangleBlock* blocks,

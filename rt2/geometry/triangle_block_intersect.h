@@ -39,15 +39,21 @@ struct NearestHit {
   float t, u, v;
 };
 
-// From the lanes hit (mask) and their t, u, v: the nearest, in registers.
-MLIB_INLINE NearestHit nearest_lane(vbool4 hit, vfloat4 t, vfloat4 u, vfloat4 v) {
+// From the lanes hit and their t, u, v: the nearest, in registers; ties at equal t go to the
+// smaller triangle index prim_of(lane) (within one block the lowest lane; across the two
+// blocks of a pair, BlockPairLanes, either).
+template <class V, class PrimOf>
+MLIB_INLINE NearestHit nearest_lane(typename V::bool_type hit, V t, V u, V v, PrimOf prim_of) {
   NearestHit n;
-  const vfloat4 tm = select(hit, t, vfloat4::broadcast(kInfinity));
-  const vfloat4 m = mlib::reduce_min(tm);
-  const unsigned at = mlib::bits(hit & (tm == m));
+  const V tm = select(hit, t, V::broadcast(kInfinity));
+  const unsigned at = mlib::bits(hit & (tm == mlib::reduce_min(tm)));
   if (!at) return n;
   n.lane = std::countr_zero(at);
-  alignas(16) float ts[4], us[4], vs[4];
+  for (unsigned m = at & (at - 1); m; m &= m - 1) {  // a tie: rare
+    const int l = std::countr_zero(m);
+    if (prim_of(l) < prim_of(n.lane)) n.lane = l;
+  }
+  alignas(32) float ts[V::size], us[V::size], vs[V::size];
   t.store(ts), u.store(us), v.store(vs);
   n.t = ts[n.lane], n.u = us[n.lane], n.v = vs[n.lane];
   return n;
@@ -97,27 +103,6 @@ struct BlockPairLanes {
 template <class V>
 MLIB_INLINE V both_halves(vfloat4 x) {
   return V::from_halves(x, x);
-}
-
-// The nearest lane hit of a block pair (BlockPairLanes): ties at equal t go to the smaller
-// triangle index, as between two blocks tested one after the other (the two blocks' indices
-// are not ordered).
-template <class V>
-MLIB_INLINE NearestHit nearest_lane_of_pair(typename V::bool_type hit, V t, V u, V v,
-                                            const TriangleBlock& a, const TriangleBlock& b) {
-  NearestHit n;
-  const V tm = select(hit, t, V::broadcast(kInfinity));
-  const unsigned at = mlib::bits(hit & (tm == mlib::reduce_min(tm)));
-  if (!at) return n;
-  n.lane = std::countr_zero(at);
-  for (unsigned m = at & (at - 1); m; m &= m - 1) {  // a tie: rare
-    const int l = std::countr_zero(m);
-    if ((l < 4 ? a : b).prim_of(l & 3) < (n.lane < 4 ? a : b).prim_of(n.lane & 3)) n.lane = l;
-  }
-  alignas(32) float ts[V::size], us[V::size], vs[V::size];
-  t.store(ts), u.store(us), v.store(vs);
-  n.t = ts[n.lane], n.u = us[n.lane], n.v = vs[n.lane];
-  return n;
 }
 
 // The thesis's test (formula 10) for the lanes of V, each lane one (triangle, ray) pair,
@@ -227,7 +212,7 @@ struct FastTriangleTest {
     if (!d.may_hit) return {};
     vfloat4 t, u, v;
     const vbool4 hit = exact(d, t_min, t_max, t, u, v);
-    return nearest_lane(hit, t, u, v);
+    return nearest_lane(hit, t, u, v, [&b](int l) { return b.prim_of(l); });
   }
 
   // The nearest lane hit of blocks a and b at once, a's triangles in lanes 0 ... 3 and b's
@@ -241,7 +226,7 @@ struct FastTriangleTest {
     if (!terms.may_hit(t_min, t_max)) return {};
     V t, u, v;
     const auto hit = terms.exact(t_min, t_max, t, u, v);
-    return nearest_lane_of_pair(hit, t, u, v, a, b);
+    return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
   }
 };
 
@@ -339,7 +324,7 @@ struct WatertightTriangleTest {
     vfloat4 t, u, v;
     const vbool4 hit = test(b, t_min, t_max, t, u, v);
     if (!mlib::bits(hit)) return {};
-    return nearest_lane(hit, t, u, v);
+    return nearest_lane(hit, t, u, v, [&b](int l) { return b.prim_of(l); });
   }
 
   // The nearest lane hit of blocks a and b at once (see FastTriangleTest::nearest_pair).
@@ -353,7 +338,7 @@ struct WatertightTriangleTest {
                                               both_halves<V>(sy), both_halves<V>(sz), ray.kx,
                                               ray.ky, ray.kz, t_min, t_max, t, u, v);
     if (!mlib::bits(hit)) return {};
-    return nearest_lane_of_pair(hit, t, u, v, a, b);
+    return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
   }
 
  private:
