@@ -164,6 +164,15 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
       expect(std::bit_cast<std::uint32_t>(out[i]) ==
                  std::bit_cast<std::uint32_t>(i < 4 ? hi[i] : lo[i - 4]),
              "from_halves", i);
+    // fmadd rounds once: (1 + 2^-12)^2 - (1 + 2^-11) is 2^-24 exactly, which the product
+    // rounded first would lose (to 0); and the exact sum does not overflow where the
+    // product alone would.
+    const float e = 1.0f + 0x1p-12f;
+    const V fused = fmadd(V::broadcast(e), V::broadcast(e), V::broadcast(-(1.0f + 0x1p-11f)));
+    fused.store(out);
+    for (int i = 0; i < N; ++i) expect(out[i] == 0x1p-24f, "fmadd rounds once", i);
+    fmadd(V::broadcast(0x1p100f), V::broadcast(0x1p28f), V::broadcast(-0x1p127f)).store(out);
+    for (int i = 0; i < N; ++i) expect(out[i] == 0x1p127f, "fmadd: no overflow of the product", i);
   }
   alignas(64) float buffer[N + 1];
   for (int i = 0; i <= N; ++i) buffer[i] = float(-i);

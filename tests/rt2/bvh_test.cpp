@@ -164,6 +164,61 @@ TEST(Bvh, AnyHitAgreesWithClosestHitOnSegments) {
   }
 }
 
+// The node test of the AVX2 and AVX-512 kernels takes each slab distance as one FMA,
+// b * (1 / dir) + c, with c = -org * (1 / dir) rounded once per ray (wide_traverse.h). Its
+// rounding is largest beside the distances where the scene lies far from the coordinate
+// origin and rays start on it, as secondary rays do: a triangle soup three million units
+// out, rays leaving points of its triangles in random directions or aimed at other
+// triangles' vertices and edges (where boxes' faces lie). Closest hits must be brute
+// force's, bit for bit, and any-hit must agree with them on segments.
+TEST(Bvh, RaysLeavingTrianglesThreeMillionUnitsOutFindBruteForcesHitsWithEveryNodeTest) {
+  Mesh soup = test::random_soup(400, 0.4f, 21);
+  const vec4 far(1.5e6f, -2e6f, 3e6f);
+  for (vec4& p : soup.positions) p = far + 100.0f * p;
+  soup.drop_degenerate();
+  const Scene scene = test::geometry_scene({soup});
+  const Accel probe = Accel::build(scene, BvhConfig{});
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f), len(0.0f, 300.0f);
+  const auto point_of = [&](const Triangle& t, int edge) {
+    float a = u(rng), b = u(rng);
+    if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+    if (edge == 1) a = 0.0f;             // on the edge V0 V2
+    if (edge == 2) b = 1.0f - a;         // on the edge V1 V2
+    if (edge == 3) a = 0.0f, b = 0.0f;   // the vertex V0
+    return t.point(a, b);
+  };
+  std::vector<Ray> rays;
+  std::vector<float> t_max;
+  for (int i = 0; i < 40000 / kSampleScale; ++i) {
+    const Triangle& from = probe.tris[rng() % probe.tris.size()];
+    const vec4 org = point_of(from, 0);
+    if (i % 2 == 0) {
+      rays.emplace_back(org, test::random_direction(rng));
+    } else {
+      const vec4 d = point_of(probe.tris[rng() % probe.tris.size()], 1 + i / 2 % 3) - org;
+      if (!(float(dot(d, d)) > 1e-6f)) continue;
+      rays.emplace_back(org, normalize(d));
+    }
+    t_max.push_back(len(rng));
+  }
+  const std::size_t hits = expect_closest_equals_brute_force(scene, BvhConfig{}, rays);
+  EXPECT_GT(hits, rays.size() / 4);
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    for (bool watertight : {false, true}) {
+      std::vector<std::uint8_t> occluded(rays.size());
+      std::vector<Hit> closest(rays.size());
+      trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
+      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), closest.data());
+      std::size_t disagree = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i)
+        disagree += (occluded[i] != 0) != closest[i].found();
+      EXPECT_EQ(disagree, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast");
+    }
+  }
+}
+
 TEST(Bvh, EveryIsaFindsTheSameHitsBitForBit) {
   Scene scene = make_default_scene();
   const auto rays = test::random_rays(Accel::build(scene, BvhConfig{}), 20000 / kSampleScale, 8, 2.0f);
