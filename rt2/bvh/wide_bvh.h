@@ -3,8 +3,10 @@
 // al. 2008, "Getting Rid of Packets"; Embree's BVH4/BVH8), with leaves of triangle blocks.
 //
 // It is converted from the binary SAH tree (bvh/build.h) by collapsing: each wide node
-// takes its binary node's children and keeps opening the child with the largest surface
-// area until it has N (Wald et al. 2008; as Embree's and tinybvh's converters do). The
+// holds a cut of its binary node's subtree into at most N slots, chosen by dynamic
+// programming over the binary tree so that the sum of the wide nodes' areas (their SAH
+// cost) is least (Ylitie et al. 2017), not by opening the largest child until N are
+// there, as Embree's and tinybvh's converters do (wide_build.cpp). The
 // binary tree's leaves become the wide tree's leaves unchanged, each a run of TriangleBlocks
 // (triangle_block.h), so the max-leaf-size rule of the thesis still holds. Boxes are the
 // binary tree's, padded for conservative traversal (build.cpp).
