@@ -4,11 +4,11 @@
 // A node is tested in one SIMD pass over its N child boxes (the slab test, Kay and Kajiya
 // 1986). The ray picks, once, its near and far box rows per axis from the signs of its
 // direction (Embree's TravRay), so a box test is a subtract and a multiply per plane (one
-// FMA in the 8-wide kernels, NodeRay) and no min/max between the planes of an axis. Robustness as in aabb.h (Ize 2013): the far
-// distance is scaled by 1 + 2 gamma(3) so that rounding never culls a box the ray touches,
-// and the NaN a ray in a slab's plane produces (0 * inf) is replaced by the neighbouring
-// bound, because maxps / minps return their second operand for NaN: such a ray counts as
-// inside the slab.
+// FMA in the 8-wide kernels, NodeRay) and no min/max between the planes of an axis.
+// Robustness as in aabb.h (Ize 2013): the far distance is scaled by 1 + 2 gamma(3) so that
+// rounding never culls a box the ray touches, and the NaN a ray in a slab's plane produces
+// (0 * inf) is replaced by the neighbouring bound, because maxps / minps return their
+// second operand for NaN: such a ray counts as inside the slab.
 //
 // Closest hit: of two children a ray enters, the nearer is visited first; three or more
 // are pushed in the node's order for the ray's octant (WideNode::octant_order: roughly
