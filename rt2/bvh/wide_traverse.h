@@ -73,8 +73,8 @@ inline constexpr bool kFusedNodeTest =
 // and c_far above the exact value. Then a near distance is the exact one rounded once
 // after a shift down, and a far one the exact (b - org) * inv_far rounded once after a
 // shift up: each errs less, in the direction that matters, than the two roundings of
-// (b - org) * inv that Ize's padding (kSlabPad) covers. A c off by 16 ulps the wrong way
-// loses hits in five tests (bvh_test's far-soup test among them).
+// (b - org) * inv that Ize's padding (kSlabPad) covers. A c moved the wrong way by 2^-20
+// of itself (8-16 ulps) loses hits in five tests (bvh_test's far-soup test among them).
 template <int N, bool Finite>
 struct NodeRay {
   using V = mlib::vfloat<N>;
