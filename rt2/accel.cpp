@@ -101,4 +101,8 @@ std::size_t Accel::bvh_bytes() const {
          sphere_bvh.order.size() * sizeof(std::uint32_t);
 }
 
+WideSah Accel::tree_sah() const {
+  return bvh_width(isa) == 8 ? wide_sah(bvh8, blocks.data()) : wide_sah(bvh4, blocks.data());
+}
+
 }  // namespace rt2

@@ -69,6 +69,9 @@ struct Accel {
   // the shading data (tris, materials, normals).
   std::size_t bvh_bytes() const;
 
+  // The triangle tree's surface area cost in Embree's terms (wide_sah, bvh/wide_bvh.h).
+  WideSah tree_sah() const;
+
   // Branch-free: a batch's hits mix the kinds unpredictably (a plane's tag, or any other,
   // reads the planes').
   std::uint32_t material_of(PrimRef p) const {

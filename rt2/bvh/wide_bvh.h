@@ -70,6 +70,22 @@ struct TraversalCounts {
   }
 };
 
+// The tree's cost by the surface area heuristic, as Embree's statistics state it
+// (kernels/bvh/bvh_statistics.cpp; Embree prints it after a build with `verbose=3`), so the
+// two trees can be compared: for a random line through the root's box, `nodes` is the
+// expected number of inner nodes whose boxes it enters (each inner node's surface area
+// over the root's, the root's own 1 included) and `leaves` the expected number of triangle
+// blocks it would test (each leaf's area ratio times its blocks). By Cauchy's formula, a
+// random line that meets a convex body meets a convex body inside it with probability the
+// ratio of their surface areas. The root's box is the union of its children's; a tree of
+// one leaf has nodes = 0, leaves = its blocks.
+struct WideSah {
+  double nodes = 0.0, leaves = 0.0;
+};
+
+template <int N>
+WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks);
+
 // Collapses the binary tree `bvh` over triangles into a wide one. Leaf i's triangles are
 // triangles[bvh.order[first .. first + count)] in the binary tree; here they must already be
 // stored in leaf order, so that the binary leaf [first, first + count) holds

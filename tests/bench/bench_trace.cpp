@@ -65,6 +65,10 @@
 // Bytes per triangle: rt2's accel_bytes; Embree's net bytes allocated during rtcCommitScene
 // (its memory monitor: BVH and leaf triangles; the shared vertex and index arrays are the
 // application's).
+// Tree cost: rt2's sah_nodes and sah_leaves (Accel::tree_sah) are the statistics Embree
+// prints for its own tree with --embree-config verbose=3 ("getAABBNodes : sah = ..." and
+// "leaves : sah = ..."): the inner nodes and the leaf blocks a random line through the
+// scene's box is expected to meet. Equal values mean equally good trees by the SAH.
 //
 // OUTPUT. Everything on stdout is `key=value` lines (progress goes to stderr):
 //   cpu="..." hw_threads=N
@@ -72,7 +76,8 @@
 //       kernels' instruction set, the widest the CPU runs unless --isa forces one)
 //   embree=3.13.5 embree_native_ray16=1 embree_tasking=tbb  (or embree=none / embree=off)
 //   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
-//       bytes=... bytes_per_tri=...      (and engine=embree test=T lines, then ratio lines)
+//       bytes=... bytes_per_tri=... sah_nodes=... sah_leaves=...
+//       (and engine=embree test=T lines, then ratio lines)
 //   mesh=M set=S engine=E test=T threads=K rays=... mrays_median=... mrays_min=...
 //       mrays_max=... hits=... [nodes_per_ray=... triangles_per_ray=...; rt2_packets adds
 //       rays_in_packets=... differences=...] [Embree lines add, against rt2: disagree=...
@@ -477,13 +482,15 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
 #endif
   const Stats r = stats(rt2_ms);
   const std::size_t bytes = rt2::accel_bytes(acc);
+  const rt2::WideSah sah = acc.tree_sah();
   std::printf("mesh=%s tris=%zu set=build engine=rt2 threads=1 reps=%d build_ms_median=%.2f "
               "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f isa=%s "
-              "width=%d nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f\n",
+              "width=%d nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f sah_nodes=%.3f "
+              "sah_leaves=%.3f\n",
               m.name.c_str(), m.tris, o.build_reps, r.median, r.min, r.max, bytes,
               double(bytes) / double(m.tris), rt2::isa_name(acc.isa), rt2::bvh_width(acc.isa),
               acc.wide_nodes, acc.stats.leaves, acc.blocks.size(),
-              double(m.tris) / (4.0 * double(acc.blocks.size())));
+              double(m.tris) / (4.0 * double(acc.blocks.size())), sah.nodes, sah.leaves);
   for (bool watertight : o.tests) {
     if (embree_ms[watertight].empty()) continue;
     const Stats e = stats(embree_ms[watertight]);
