@@ -555,6 +555,26 @@ TEST(Bvh, WideSahIsTheInnerNodesAndLeafBlocksRandomLinesMeet) {
   expect_sah_is_what_random_lines_meet<4>(4, 1);
   expect_sah_is_what_random_lines_meet<8>(4, 2);
   expect_sah_is_what_random_lines_meet<8>(16, 3);  // leaves of several blocks
+  // A tree that is one leaf: no inner node, every line meets its blocks; no tree: nothing.
+  const Mesh few = test::random_soup(7, 0.3f, 4);
+  std::vector<Triangle> tris;
+  std::vector<Aabb> boxes;
+  for (const auto& f : few.faces) {
+    tris.push_back(Triangle::make(few.positions[f[0]], few.positions[f[1]], few.positions[f[2]]));
+    Aabb b;
+    for (std::uint32_t v : f) b.grow(few.positions[v]);
+    boxes.push_back(b);
+  }
+  const Bvh bvh = build_bvh(boxes, BvhConfig{8, Split::sah, 16});
+  std::vector<Triangle> ordered;
+  for (std::uint32_t k : bvh.order) ordered.push_back(tris[k]);
+  std::vector<TriangleBlock> blocks;
+  const WideBvh<8> leaf = collapse_bvh<8>(bvh, ordered, blocks);
+  ASSERT_TRUE(leaf.root & kLeaf);
+  EXPECT_EQ(wide_sah(leaf, blocks.data()).nodes, 0.0);
+  EXPECT_EQ(wide_sah(leaf, blocks.data()).leaves, 2.0);  // seven triangles: two blocks
+  const WideSah none = wide_sah(WideBvh<4>{}, nullptr);
+  EXPECT_EQ(none.nodes + none.leaves, 0.0);
 }
 
 TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
