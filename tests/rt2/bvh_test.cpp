@@ -432,22 +432,36 @@ class ExhaustiveCollapse {
   std::vector<double> memo_;
 };
 
+// The wide tree over a mesh's triangles as Accel::build makes it: the binary SAH tree with
+// leaves of at most max_leaf triangles, the triangles put in its leaf order, collapsed into
+// nodes of N children.
+template <int N>
+struct CollapsedMesh {
+  Bvh bvh;
+  std::vector<TriangleBlock> blocks;
+  WideBvh<N> wide;
+
+  CollapsedMesh(const Mesh& mesh, std::uint32_t max_leaf) {
+    std::vector<Triangle> tris;
+    std::vector<Aabb> boxes;
+    for (const auto& f : mesh.faces) {
+      tris.push_back(Triangle::make(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]));
+      Aabb b;
+      for (std::uint32_t v : f) b.grow(mesh.positions[v]);
+      boxes.push_back(b);
+    }
+    bvh = build_bvh(boxes, BvhConfig{max_leaf, Split::sah, 16});
+    std::vector<Triangle> ordered;
+    for (std::uint32_t k : bvh.order) ordered.push_back(tris[k]);
+    wide = collapse_bvh<N>(bvh, ordered, blocks);
+  }
+};
+
 template <int N>
 void expect_collapse_is_least_cost(unsigned seed, std::size_t triangles) {
-  const Mesh soup = test::random_soup(triangles, 0.5f, seed);
-  std::vector<Triangle> tris;
-  std::vector<Aabb> boxes;
-  for (const auto& f : soup.faces) {
-    tris.push_back(Triangle::make(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]));
-    Aabb b;
-    for (std::uint32_t v : f) b.grow(soup.positions[v]);
-    boxes.push_back(b);
-  }
-  const Bvh bvh = build_bvh(boxes, BvhConfig{1, Split::sah, 16});
-  std::vector<Triangle> ordered;
-  for (std::uint32_t k : bvh.order) ordered.push_back(tris[k]);
-  std::vector<TriangleBlock> blocks;
-  const WideBvh<N> w = collapse_bvh<N>(bvh, ordered, blocks);
+  const CollapsedMesh<N> c(test::random_soup(triangles, 0.5f, seed), 1);
+  const Bvh& bvh = c.bvh;
+  const WideBvh<N>& w = c.wide;
   ExhaustiveCollapse oracle(bvh, N);
   const double least = oracle.below(0);
   EXPECT_NEAR(wide_node_areas(w), least, 1e-9 * least) << "N = " << N << ", seed " << seed;
@@ -484,20 +498,9 @@ bool line_meets_box(const double* p, const double* d, const float* lo, const flo
 // (a leaf's blocks when its box is met) it meets.
 template <int N>
 void expect_sah_is_what_random_lines_meet(std::uint32_t max_leaf, unsigned seed) {
-  const Mesh soup = test::random_soup(800, 0.3f, seed);
-  std::vector<Triangle> tris;
-  std::vector<Aabb> boxes;
-  for (const auto& f : soup.faces) {
-    tris.push_back(Triangle::make(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]));
-    Aabb b;
-    for (std::uint32_t v : f) b.grow(soup.positions[v]);
-    boxes.push_back(b);
-  }
-  const Bvh bvh = build_bvh(boxes, BvhConfig{max_leaf, Split::sah, 16});
-  std::vector<Triangle> ordered;
-  for (std::uint32_t k : bvh.order) ordered.push_back(tris[k]);
-  std::vector<TriangleBlock> blocks;
-  const WideBvh<N> w = collapse_bvh<N>(bvh, ordered, blocks);
+  const CollapsedMesh<N> c(test::random_soup(800, 0.3f, seed), max_leaf);
+  const WideBvh<N>& w = c.wide;
+  const std::vector<TriangleBlock>& blocks = c.blocks;
   ASSERT_EQ(w.root, 0u);
   const WideSah sah = wide_sah(w, blocks.data());
 
@@ -556,23 +559,10 @@ TEST(Bvh, WideSahIsTheInnerNodesAndLeafBlocksRandomLinesMeet) {
   expect_sah_is_what_random_lines_meet<8>(4, 2);
   expect_sah_is_what_random_lines_meet<8>(16, 3);  // leaves of several blocks
   // A tree that is one leaf: no inner node, every line meets its blocks; no tree: nothing.
-  const Mesh few = test::random_soup(7, 0.3f, 4);
-  std::vector<Triangle> tris;
-  std::vector<Aabb> boxes;
-  for (const auto& f : few.faces) {
-    tris.push_back(Triangle::make(few.positions[f[0]], few.positions[f[1]], few.positions[f[2]]));
-    Aabb b;
-    for (std::uint32_t v : f) b.grow(few.positions[v]);
-    boxes.push_back(b);
-  }
-  const Bvh bvh = build_bvh(boxes, BvhConfig{8, Split::sah, 16});
-  std::vector<Triangle> ordered;
-  for (std::uint32_t k : bvh.order) ordered.push_back(tris[k]);
-  std::vector<TriangleBlock> blocks;
-  const WideBvh<8> leaf = collapse_bvh<8>(bvh, ordered, blocks);
-  ASSERT_TRUE(leaf.root & kLeaf);
-  EXPECT_EQ(wide_sah(leaf, blocks.data()).nodes, 0.0);
-  EXPECT_EQ(wide_sah(leaf, blocks.data()).leaves, 2.0);  // seven triangles: two blocks
+  const CollapsedMesh<8> leaf(test::random_soup(7, 0.3f, 4), 8);
+  ASSERT_TRUE(leaf.wide.root & kLeaf);
+  EXPECT_EQ(wide_sah(leaf.wide, leaf.blocks.data()).nodes, 0.0);
+  EXPECT_EQ(wide_sah(leaf.wide, leaf.blocks.data()).leaves, 2.0);  // seven triangles: two blocks
   const WideSah none = wide_sah(WideBvh<4>{}, nullptr);
   EXPECT_EQ(none.nodes + none.leaves, 0.0);
 }
