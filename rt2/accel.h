@@ -33,7 +33,7 @@ struct Accel {
   // blocks, and per triangle (by the index blocks hold) its data for shading.
   WideBvh<4> bvh4;
   WideBvh<8> bvh8;
-  std::vector<TriangleBlock> blocks;
+  TriangleBlocks blocks;
   std::vector<Triangle> tris;
   std::vector<std::uint32_t> tri_materials;
   std::vector<std::array<vec4, 3>> tri_normals;  // per-vertex normals; empty if all flat

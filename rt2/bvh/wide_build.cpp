@@ -12,7 +12,7 @@ namespace {
 template <int N>
 class Collapser {
  public:
-  Collapser(const Bvh& bvh, const std::vector<Triangle>& tris, std::vector<TriangleBlock>& blocks,
+  Collapser(const Bvh& bvh, const std::vector<Triangle>& tris, TriangleBlocks& blocks,
             WideBvh<N>& out)
       : bvh_(bvh), tris_(tris), blocks_(blocks), out_(out) {}
 
@@ -184,7 +184,7 @@ class Collapser {
   std::vector<std::uint8_t> wide_split_;
   const Bvh& bvh_;
   const std::vector<Triangle>& tris_;
-  std::vector<TriangleBlock>& blocks_;
+  TriangleBlocks& blocks_;
   WideBvh<N>& out_;
 };
 
@@ -192,10 +192,14 @@ class Collapser {
 
 template <int N>
 WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
-                        std::vector<TriangleBlock>& blocks) {
+                        TriangleBlocks& blocks) {
   WideBvh<N> out;
   if (bvh.nodes.empty()) return out;
   out.nodes.reserve(bvh.nodes.size() / (N - 1) + 1);
+  std::size_t leaf_blocks = 0;  // reserved at once: each growth would copy them all
+  for (const BvhNode& node : bvh.nodes)
+    if (node.is_leaf()) leaf_blocks += (node.count + TriangleBlock::kLanes - 1) / TriangleBlock::kLanes;
+  blocks.reserve(blocks.size() + leaf_blocks);
   Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();
   out.nodes.shrink_to_fit();
@@ -203,8 +207,8 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
 }
 
 template WideBvh<4> collapse_bvh<4>(const Bvh&, const std::vector<Triangle>&,
-                                    std::vector<TriangleBlock>&);
+                                    TriangleBlocks&);
 template WideBvh<8> collapse_bvh<8>(const Bvh&, const std::vector<Triangle>&,
-                                    std::vector<TriangleBlock>&);
+                                    TriangleBlocks&);
 
 }  // namespace rt2

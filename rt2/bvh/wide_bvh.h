@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mlib/huge_pages.h"
 #include "rt2/bvh/node.h"
 #include "rt2/geometry/triangle_block.h"
 
@@ -49,7 +50,9 @@ static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);
 
 template <int N>
 struct WideBvh {
-  std::vector<WideNode<N>> nodes;  // depth first; nodes[0] is the root when root is not a leaf
+  // Depth first; nodes[0] is the root when root is not a leaf. On huge pages once large
+  // (mlib/huge_pages.h): a ray reads a few nodes anywhere in the array.
+  mlib::HugePageVector<WideNode<N>> nodes;
   std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
   std::uint32_t leaves = 0;
   std::uint32_t max_depth = 0;
@@ -93,6 +96,6 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks);
 // into `triangles`).
 template <int N>
 WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
-                        std::vector<TriangleBlock>& blocks);
+                        TriangleBlocks& blocks);
 
 }  // namespace rt2

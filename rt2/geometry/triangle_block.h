@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "mlib/huge_pages.h"
 #include "rt2/geometry/triangle.h"
 
 namespace rt2 {
@@ -56,5 +57,9 @@ struct alignas(16) TriangleBlock {
   bool last() const { return (prim[0] & kLastBlock) != 0; }
 };
 static_assert(sizeof(TriangleBlock) == 208);
+
+// A tree's leaf blocks, on huge pages once large (mlib/huge_pages.h): a ray reads a few
+// blocks anywhere in the array.
+using TriangleBlocks = mlib::HugePageVector<TriangleBlock>;
 
 }  // namespace rt2

@@ -438,7 +438,7 @@ class ExhaustiveCollapse {
 template <int N>
 struct CollapsedMesh {
   Bvh bvh;
-  std::vector<TriangleBlock> blocks;
+  TriangleBlocks blocks;
   WideBvh<N> wide;
 
   CollapsedMesh(const Mesh& mesh, std::uint32_t max_leaf) {
@@ -500,7 +500,7 @@ template <int N>
 void expect_sah_is_what_random_lines_meet(std::uint32_t max_leaf, unsigned seed) {
   const CollapsedMesh<N> c(test::random_soup(800, 0.3f, seed), max_leaf);
   const WideBvh<N>& w = c.wide;
-  const std::vector<TriangleBlock>& blocks = c.blocks;
+  const TriangleBlocks& blocks = c.blocks;
   ASSERT_EQ(w.root, 0u);
   const WideSah sah = wide_sah(w, blocks.data());
 

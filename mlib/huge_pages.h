@@ -1,0 +1,78 @@
+// mlib/huge_pages.h — an allocator for large arrays read at random (a BVH's nodes and
+// leaves): memory backed by 2 MiB pages where the operating system offers them.
+//
+// A ray's walk reads a few nodes and leaves anywhere in its tree. Once the tree is much
+// larger than the TLB covers in 4 KiB pages (a few thousand entries: some megabytes), most
+// of those reads first walk the page table; with 2 MiB pages a hundred megabytes of tree
+// needs fifty entries. Linux backs an anonymous mapping with transparent huge pages when
+// the program asks for them with madvise(MADV_HUGEPAGE), which Debian's default policy
+// ("madvise") requires; Embree asks the same for its trees. Where the kernel has them
+// disabled, or on another system, the memory is ordinary memory, only aligned.
+//
+// Arrays smaller than one huge page take ordinary allocations (aligned to T), so that small
+// trees cost no more memory than before.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace mlib {
+
+inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+
+// Whether an allocation of `bytes` is placed on huge pages (allocate_huge) or not.
+inline bool wants_huge_pages(std::size_t bytes) { return bytes >= kHugePageBytes; }
+
+// `bytes` (> 0) of memory aligned to kHugePageBytes, its length rounded up to whole huge
+// pages, advised to the kernel as huge-page memory. Freed with std::free. Throws
+// std::bad_alloc when there is no memory.
+inline void* allocate_huge(std::size_t bytes) {
+  if (bytes > PTRDIFF_MAX - kHugePageBytes) throw std::bad_alloc();  // no object is larger
+  const std::size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+  void* p = std::aligned_alloc(kHugePageBytes, rounded);
+  if (!p) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  madvise(p, rounded, MADV_HUGEPAGE);  // advice: a kernel without THP ignores it (EINVAL)
+#endif
+  return p;
+}
+
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+
+  HugePageAllocator() = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
+
+  T* allocate(std::size_t n) {
+    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+    const std::size_t bytes = n * sizeof(T);
+    if (wants_huge_pages(bytes)) return static_cast<T*>(allocate_huge(bytes));
+    return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (wants_huge_pages(n * sizeof(T)))
+      std::free(p);
+    else
+      ::operator delete(p, std::align_val_t{alignof(T)});
+  }
+
+  template <class U>
+  bool operator==(const HugePageAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+
+// A std::vector whose storage, once it reaches a huge page, lies on huge pages.
+template <class T>
+using HugePageVector = std::vector<T, HugePageAllocator<T>>;
+
+}  // namespace mlib
