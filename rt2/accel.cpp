@@ -14,28 +14,29 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
     std::uint32_t face;
   };
   std::vector<Source> sources;
-  std::vector<Aabb> boxes;
   sources.reserve(scene.triangle_count());
-  boxes.reserve(scene.triangle_count());
   bool any_normals = false, any_texcoords = false;
   for (const Mesh& m : scene.meshes) {
     any_normals |= !m.normals.empty() && !m.faces.empty();
     any_texcoords |= !m.texcoords.empty() && !m.faces.empty();
-    for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
-      Aabb b;
-      for (std::uint32_t v : m.faces[f]) b.grow(m.positions[v]);
-      sources.push_back({&m, f});
-      boxes.push_back(b);
-    }
+    for (std::uint32_t f = 0; f < m.faces.size(); ++f) sources.push_back({&m, f});
   }
-  const Bvh bvh = build_bvh(boxes, config);
+  // Each box made where the builder stores it. The binary tree is read once, by the
+  // collapse below, and not kept.
+  const Bvh bvh = build_bvh(
+      static_cast<std::uint32_t>(sources.size()),
+      [&sources](std::uint32_t i) {
+        const Mesh& m = *sources[i].mesh;
+        Aabb b;
+        for (std::uint32_t v : m.faces[sources[i].face]) b.grow(m.positions[v]);
+        return b;
+      },
+      config);
   acc.stats = bvh.stats;
   acc.tris.reserve(bvh.order.size());
   acc.tri_materials.reserve(bvh.order.size());
   if (any_normals) acc.tri_normals.reserve(bvh.order.size());
   if (any_texcoords) acc.tri_texcoords.reserve(bvh.order.size());
-  // At most one partly filled block per leaf.
-  acc.blocks.reserve(bvh.order.size() / TriangleBlock::kLanes + bvh.stats.leaves);
   for (std::uint32_t k : bvh.order) {
     const Mesh& m = *sources[k].mesh;
     const auto& f = m.faces[sources[k].face];
@@ -63,7 +64,6 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
     acc.bvh4 = collapse_bvh<4>(bvh, acc.tris, acc.blocks);
     acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh4.nodes.size());
   }
-  acc.blocks.shrink_to_fit();
 }
 
 void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
@@ -77,6 +77,7 @@ void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
     boxes.push_back(b);
   }
   acc.sphere_bvh = build_bvh(boxes, config);
+  acc.sphere_bvh.nodes.shrink_to_fit();  // kept: not the two nodes per sphere reserved
   for (std::uint32_t k : acc.sphere_bvh.order) {
     acc.spheres.push_back(scene.spheres[k]);
     acc.sphere_materials.push_back(scene.sphere_materials[k]);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "mlib/huge_pages.h"
 #include "rt2/error.h"
 
 namespace rt2 {
@@ -39,20 +40,22 @@ struct Bin {
 
 class Builder {
  public:
-  Builder(const std::vector<Aabb>& boxes, const BvhConfig& config, Bvh& out)
+  Builder(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box_of,
+          const BvhConfig& config, Bvh& out)
       : config_(config), out_(out), bins_(2 * 3 * std::size_t(config.sah_bins)),
         right_(std::size_t(config.sah_bins)) {
-    prims_.resize(boxes.size());
-    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    prims_.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const Aabb box = box_of(i);
       for (int a = 0; a < 3; ++a) {
-        prims_[i].lo[a] = boxes[i].lo[a];
-        prims_[i].hi[a] = boxes[i].hi[a];
+        prims_[i].lo[a] = box.lo[a];
+        prims_[i].hi[a] = box.hi[a];
       }
       prims_[i].index = i;
       prims_[i].pad = 0;
     }
     // A full binary tree over n primitives has at most 2n - 1 nodes.
-    out_.nodes.reserve(2 * boxes.size());
+    out_.nodes.reserve(2 * std::size_t(count));
   }
 
   void run() {
@@ -61,7 +64,6 @@ class Builder {
     build(0, static_cast<std::uint32_t>(prims_.size()), bounds, cbounds, 0);
     out_.order.resize(prims_.size());
     for (std::size_t i = 0; i < prims_.size(); ++i) out_.order[i] = prims_[i].index;
-    out_.nodes.shrink_to_fit();
   }
 
  private:
@@ -273,14 +275,15 @@ class Builder {
 
   const BvhConfig& config_;
   Bvh& out_;
-  std::vector<PrimBox> prims_;
+  mlib::HugePageVector<PrimBox> prims_;  // partitioned over and over: huge pages once large
   std::vector<Bin> bins_;    // [set][axis][bin], two sets (see sah)
   std::vector<Side> right_;  // [bin]: what lies right of the plane before it
 };
 
 }  // namespace
 
-Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config) {
+Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box_of,
+              const BvhConfig& config) {
   if (config.max_leaf_size == 0) throw Error("BVH max leaf size must be >= 1");
   if (config.sah_bins < 2 || config.sah_bins > 1024)
     throw Error("BVH SAH bins must be in [2, 1024]");
@@ -288,11 +291,17 @@ Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config) {
     throw Error("BVH SAH block size must be a power of two in [1, 64]");
   const auto t0 = std::chrono::steady_clock::now();
   Bvh bvh;
-  if (!boxes.empty()) Builder(boxes, config, bvh).run();
+  if (count > 0) Builder(count, box_of, config, bvh).run();
   bvh.stats.nodes = static_cast<std::uint32_t>(bvh.nodes.size());
   bvh.stats.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return bvh;
+}
+
+Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config) {
+  return build_bvh(
+      static_cast<std::uint32_t>(boxes.size()), [&boxes](std::uint32_t i) { return boxes[i]; },
+      config);
 }
 
 }  // namespace rt2

@@ -4,6 +4,8 @@
 // nothing of triangles or spheres, and nothing of how the tree will be traversed.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "rt2/aabb.h"
@@ -16,6 +18,14 @@ namespace rt2 {
 // is split in two. A split that would leave a side empty (coincident centroids) falls back
 // to the object median, and so does every split below depth 64, so the depth stays below
 // kMaxBvhDepth for any input. Throws rt2::Error for max_leaf_size 0 or sah_bins < 2.
+// The tree's node array keeps the capacity the build reserved (two nodes per primitive):
+// a caller that keeps the tree shrinks it (`nodes.shrink_to_fit()`), one that only reads it
+// once (collapse_bvh) saves the copy.
 Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config);
+
+// The same over `count` primitives, primitive i having the box box_of(i): without a vector
+// of boxes, for a large mesh 32 bytes per triangle that need not be written and read again.
+Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box_of,
+              const BvhConfig& config);
 
 }  // namespace rt2

@@ -12,7 +12,7 @@ namespace {
 template <int N>
 class Collapser {
  public:
-  Collapser(const Bvh& bvh, const std::vector<Triangle>& tris, TriangleBlocks& blocks,
+  Collapser(const Bvh& bvh, std::span<const Triangle> tris, TriangleBlocks& blocks,
             WideBvh<N>& out)
       : bvh_(bvh), tris_(tris), blocks_(blocks), out_(out) {}
 
@@ -20,6 +20,7 @@ class Collapser {
   std::uint32_t convert_root() {
     if (bvh_.nodes[0].is_leaf()) return leaf(bvh_.nodes[0]);
     plan();
+    out_.nodes.reserve(wide_nodes(0));  // exactly: no copy to shrink it after
     out_.nodes.emplace_back();
     fill(0, 0, 0);
     return 0;
@@ -104,8 +105,10 @@ class Collapser {
   // bench_trace 1,844 8-wide nodes against 1,168 now (Embree's tree: 1,232), 84 bytes per
   // triangle against 75, and incoherent rays 5-10 % faster with the fast triangle test and
   // 6-16 % with the watertight one on the four bench-peer meshes (bench_trace, old and new
-  // alternated). The tables take 9 doubles and 18 bytes per binary node while the tree is
-  // collapsed (about 50 bytes per triangle), freed after.
+  // alternated). The tables take 9 floats and 19 bytes per binary node (N = 8) while the
+  // tree is collapsed (about 35 bytes per triangle, on huge pages; with doubles 57, and the
+  // plan of a 1.4M-triangle mesh took 48 ms rather than 30), freed after. Costs summed in
+  // float may pick, where two plans nearly tie, one a few ulps of the cost above the least.
   // cost_[m][k]: the least cost of binary subtree m held in at most k slots of a wide node;
   // used_[m][k]: the slots that least cost takes; split_[m][k]: the slots its first child's
   // subtree takes (0: m itself in one slot, a wide node of its own).
@@ -118,22 +121,22 @@ class Collapser {
     for (std::size_t i = count; i-- > 0;) {
       const BvhNode& node = bvh_.nodes[i];
       if (node.is_leaf()) {
-        for (int k = 1; k <= N; ++k) cost_[i][k] = 0.0, used_[i][k] = 1, split_[i][k] = 0;
+        for (int k = 1; k <= N; ++k) cost_[i][k] = 0.0f, used_[i][k] = 1, split_[i][k] = 0;
         continue;
       }
       const std::size_t l = i + 1, r = node.offset;
-      double d[N + 1];
+      float d[N + 1];
       std::uint8_t arg[N + 1];
       for (int k = 2; k <= N; ++k) {
-        d[k] = std::numeric_limits<double>::infinity();
+        d[k] = std::numeric_limits<float>::infinity();
         arg[k] = 1;
         for (int a = 1; a < k; ++a) {
-          const double c = cost_[l][a] + cost_[r][k - a];
+          const float c = cost_[l][a] + cost_[r][k - a];
           if (c < d[k]) d[k] = c, arg[k] = std::uint8_t(a);
         }
       }
       wide_split_[i] = arg[N];
-      cost_[i][1] = double(area(node)) + d[N];
+      cost_[i][1] = area(node) + d[N];
       used_[i][1] = 1;
       split_[i][1] = 0;
       for (int k = 2; k <= N; ++k) {
@@ -159,6 +162,18 @@ class Collapser {
     expand(node.offset, used - a, kids, n);
   }
 
+  // The wide nodes the plan makes of binary subtree b (inner) when b is a wide node.
+  std::size_t wide_nodes(std::uint32_t b) const {
+    std::uint32_t kids[N];
+    int n = 0;
+    expand(b + 1, wide_split_[b], kids, n);
+    expand(bvh_.nodes[b].offset, N - wide_split_[b], kids, n);
+    std::size_t count = 1;
+    for (int i = 0; i < n; ++i)
+      if (!bvh_.nodes[kids[i]].is_leaf()) count += wide_nodes(kids[i]);
+    return count;
+  }
+
   static float area(const BvhNode& k) {
     const float x = k.hi[0] - k.lo[0], y = k.hi[1] - k.lo[1], z = k.hi[2] - k.lo[2];
     return x * y + y * z + z * x;
@@ -179,11 +194,11 @@ class Collapser {
     return kLeaf | first;
   }
 
-  std::vector<std::array<double, N + 1>> cost_;
-  std::vector<std::array<std::uint8_t, N + 1>> used_, split_;
-  std::vector<std::uint8_t> wide_split_;
+  mlib::HugePageVector<std::array<float, N + 1>> cost_;
+  mlib::HugePageVector<std::array<std::uint8_t, N + 1>> used_, split_;
+  mlib::HugePageVector<std::uint8_t> wide_split_;
   const Bvh& bvh_;
-  const std::vector<Triangle>& tris_;
+  const std::span<const Triangle> tris_;
   TriangleBlocks& blocks_;
   WideBvh<N>& out_;
 };
@@ -191,24 +206,22 @@ class Collapser {
 }  // namespace
 
 template <int N>
-WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
+WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
                         TriangleBlocks& blocks) {
   WideBvh<N> out;
   if (bvh.nodes.empty()) return out;
-  out.nodes.reserve(bvh.nodes.size() / (N - 1) + 1);
   std::size_t leaf_blocks = 0;  // reserved at once: each growth would copy them all
   for (const BvhNode& node : bvh.nodes)
     if (node.is_leaf()) leaf_blocks += (node.count + TriangleBlock::kLanes - 1) / TriangleBlock::kLanes;
   blocks.reserve(blocks.size() + leaf_blocks);
   Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();
-  out.nodes.shrink_to_fit();
   return out;
 }
 
-template WideBvh<4> collapse_bvh<4>(const Bvh&, const std::vector<Triangle>&,
+template WideBvh<4> collapse_bvh<4>(const Bvh&, std::span<const Triangle>,
                                     TriangleBlocks&);
-template WideBvh<8> collapse_bvh<8>(const Bvh&, const std::vector<Triangle>&,
+template WideBvh<8> collapse_bvh<8>(const Bvh&, std::span<const Triangle>,
                                     TriangleBlocks&);
 
 }  // namespace rt2

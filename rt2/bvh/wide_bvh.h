@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "mlib/huge_pages.h"
@@ -95,7 +96,7 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks);
 // triangles[first .. first + count). Appends the leaves' blocks to `blocks` (prim = index
 // into `triangles`).
 template <int N>
-WideBvh<N> collapse_bvh(const Bvh& bvh, const std::vector<Triangle>& triangles,
+WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
                         TriangleBlocks& blocks);
 
 }  // namespace rt2

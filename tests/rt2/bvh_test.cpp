@@ -464,7 +464,8 @@ void expect_collapse_is_least_cost(unsigned seed, std::size_t triangles) {
   const WideBvh<N>& w = c.wide;
   ExhaustiveCollapse oracle(bvh, N);
   const double least = oracle.below(0);
-  EXPECT_NEAR(wide_node_areas(w), least, 1e-9 * least) << "N = " << N << ", seed " << seed;
+  // The plan sums areas in float: within a few ulps (per area summed) of the least.
+  EXPECT_NEAR(wide_node_areas(w), least, 1e-5 * least) << "N = " << N << ", seed " << seed;
 }
 
 TEST(Bvh, CollapseGivesTheLeastSumOfWideNodeAreasThatExhaustiveSearchFinds) {
