@@ -228,8 +228,11 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
       if constexpr (kPushInOctantOrder<N>) {
         if (rest & (rest - 1)) {  // three or more: pushed in their octant order, the
                                   // nearest (roughly) on top, without a branch per child
-          sp += compress_in_order(entry, node.child, node.octant_order, nr.order_shift, mask,
-                                  stack_t + sp, stack_ref + sp) - 1;
+          const int pushed = compress_in_order(entry, node.child, node.octant_order,
+                                               nr.order_shift, mask, stack_t + sp, stack_ref + sp);
+          if (bvh.prefetch_pushed)  // a large tree: all of them (WideBvh::prefetch_pushed)
+            for (int j = 0; j < pushed - 1; ++j) prefetch_ref(bvh, blocks, stack_ref[sp + j]);
+          sp += pushed - 1;
           ref = stack_ref[sp];
           prefetch_ref(bvh, blocks, ref);
           continue;

@@ -555,6 +555,18 @@ void expect_sah_is_what_random_lines_meet(std::uint32_t max_leaf, unsigned seed)
   EXPECT_NEAR(sah.leaves, leaves / lines, 0.03 * sah.leaves) << "N = " << N << ", leaf " << max_leaf;
 }
 
+// WideBvh::prefetch_pushed is set exactly for trees (nodes and blocks) of at least
+// kPrefetchPushedBytes.
+TEST(Bvh, EveryPushedChildIsPrefetchedOnlyInTreesOfKPrefetchPushedBytes) {
+  for (std::size_t triangles : {1000u, 300000u}) {
+    const CollapsedMesh<8> c(test::random_soup(triangles, 0.01f, 5), 4);
+    const std::size_t bytes =
+        c.wide.nodes.size() * sizeof(WideNode<8>) + c.blocks.size() * sizeof(TriangleBlock);
+    EXPECT_EQ(c.wide.prefetch_pushed, bytes >= kPrefetchPushedBytes) << bytes << " bytes";
+    if (triangles > 1000u) EXPECT_TRUE(c.wide.prefetch_pushed) << bytes << " bytes";
+  }
+}
+
 TEST(Bvh, WideSahIsTheInnerNodesAndLeafBlocksRandomLinesMeet) {
   expect_sah_is_what_random_lines_meet<4>(4, 1);
   expect_sah_is_what_random_lines_meet<8>(4, 2);

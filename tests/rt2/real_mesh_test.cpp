@@ -1,5 +1,6 @@
 // The wide BVH on real meshes: 10^5 random rays per mesh (release; 10^4 under sanitizers),
-// for every instruction set and both triangle tests, give exactly the closest hit of the
+// for every instruction set and both triangle tests, with and without the prefetches of a
+// large tree (WideBvh::prefetch_pushed), give exactly the closest hit of the
 // previous kernel — the binary SAH tree walked one triangle at a time with the one-triangle
 // tests of triangle.h (itself checked against brute force over every triangle on random
 // soups, bvh_test.cpp). Meshes: those of scripts/fetch-meshes that are present (scripts/test
@@ -62,7 +63,7 @@ class BinaryOracle {
 
 class RealMesh : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(RealMesh, EveryIsaAndTriangleTestFindsThePreviousKernelsHitOnRandomRays) {
+TEST_P(RealMesh, EveryIsaTriangleTestAndPrefetchFindsThePreviousKernelsHitOnRandomRays) {
   const std::string path = std::string(RT2_SOURCE_DIR) + "/data/meshes/" + GetParam() + ".obj";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not fetched (scripts/fetch-meshes)";
   Scene scene = frame_obj(path);
@@ -78,9 +79,12 @@ TEST_P(RealMesh, EveryIsaAndTriangleTestFindsThePreviousKernelsHitOnRandomRays) 
     for (std::size_t i = 0; i < rays.size(); ++i) expected[watertight][i] = oracle.closest(rays[i], watertight);
   }
   for (Isa isa : test::runnable_isas()) {
-    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
+    Accel acc = Accel::build(scene, BvhConfig{}, isa);
     ASSERT_EQ(acc.tris.size(), first.tris.size());
-    for (bool watertight : {false, true}) {
+    EXPECT_FALSE(acc.bvh8.prefetch_pushed);  // these trees are below kPrefetchPushedBytes
+    for (int run = 0; run < 4; ++run) {
+      const bool watertight = run & 1, prefetch = run & 2;
+      acc.bvh8.prefetch_pushed = prefetch;
       std::vector<Hit> hits(rays.size());
       const std::vector<float> t_max(rays.size(), kInfinity);
       trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
@@ -93,7 +97,8 @@ TEST_P(RealMesh, EveryIsaAndTriangleTestFindsThePreviousKernelsHitOnRandomRays) 
         differ += !(hits[i].t == (e.found() ? e.t : kInfinity) && hits[i].prim == e.prim &&
                     (!e.found() || (hits[i].u == e.u && hits[i].v == e.v)));
       }
-      EXPECT_EQ(differ, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast");
+      EXPECT_EQ(differ, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast")
+                            << (prefetch ? ", every pushed child prefetched" : "");
       EXPECT_GT(found, rays.size() / 3);
     }
   }
