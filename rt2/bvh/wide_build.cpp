@@ -211,8 +211,9 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
   WideBvh<N> out;
   if (bvh.nodes.empty()) return out;
   std::size_t leaf_blocks = 0;  // reserved at once: each growth would copy them all
+  constexpr std::uint32_t kLanes = TriangleBlock::kLanes;
   for (const BvhNode& node : bvh.nodes)
-    if (node.is_leaf()) leaf_blocks += (node.count + TriangleBlock::kLanes - 1) / TriangleBlock::kLanes;
+    if (node.is_leaf()) leaf_blocks += (node.count + kLanes - 1) / kLanes;
   blocks.reserve(blocks.size() + leaf_blocks);
   Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();

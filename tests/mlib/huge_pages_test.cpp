@@ -44,7 +44,8 @@ TEST(HugePages, VectorKeepsItsContentsGrowingPastTheThresholdAndBack) {
   EXPECT_EQ(address(v.data()) % kHugePageBytes, 0u);
   HugePageVector<std::uint32_t> copy = v;
   ASSERT_EQ(copy.size(), n);
-  for (std::size_t i = 0; i < n; i += 4099) EXPECT_EQ(copy[i], static_cast<std::uint32_t>(i * 2654435761u));
+  for (std::size_t i = 0; i < n; i += 4099)
+    EXPECT_EQ(copy[i], static_cast<std::uint32_t>(i * 2654435761u));
   copy.resize(10);
   copy.shrink_to_fit();  // back to an ordinary allocation
   EXPECT_EQ(copy[9], 9u * 2654435761u);
