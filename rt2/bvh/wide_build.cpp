@@ -33,11 +33,8 @@ class Collapser {
   // finds it near the one it just left. Leaves' blocks likewise follow each other.
   void fill(std::uint32_t index, std::uint32_t b, std::uint32_t depth) {
     out_.max_depth = std::max(out_.max_depth, depth);
-    const BvhNode& node = bvh_.nodes[b];
     std::uint32_t kids[N];
-    int n = 0;
-    expand(b + 1, wide_split_[b], kids, n);
-    expand(node.offset, N - wide_split_[b], kids, n);
+    const int n = slots(b, kids);
     WideNode<N> w;
     for (int i = 0; i < N; ++i) {
       for (int a = 0; a < 3; ++a) {
@@ -162,12 +159,19 @@ class Collapser {
     expand(node.offset, used - a, kids, n);
   }
 
-  // The wide nodes the plan makes of binary subtree b (inner) when b is a wide node.
-  std::size_t wide_nodes(std::uint32_t b) const {
-    std::uint32_t kids[N];
+  // The binary nodes that fill the slots of the wide node made of binary node b (inner),
+  // in slot order; returns how many.
+  int slots(std::uint32_t b, std::uint32_t (&kids)[N]) const {
     int n = 0;
     expand(b + 1, wide_split_[b], kids, n);
     expand(bvh_.nodes[b].offset, N - wide_split_[b], kids, n);
+    return n;
+  }
+
+  // The wide nodes the plan makes of binary subtree b (inner) when b is a wide node.
+  std::size_t wide_nodes(std::uint32_t b) const {
+    std::uint32_t kids[N];
+    const int n = slots(b, kids);
     std::size_t count = 1;
     for (int i = 0; i < n; ++i)
       if (!bvh_.nodes[kids[i]].is_leaf()) count += wide_nodes(kids[i]);

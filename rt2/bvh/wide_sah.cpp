@@ -1,6 +1,5 @@
 // rt2/bvh/wide_sah.cpp — the wide tree's surface area cost in Embree's terms (wide_bvh.h).
 #include <algorithm>
-#include <limits>
 
 #include "rt2/bvh/wide_bvh.h"
 
@@ -8,13 +7,17 @@ namespace rt2 {
 
 namespace {
 
-// Half the surface area of slot i's box, in double (the float box's extents exactly).
+// Half the surface area of the box [lo, hi], in double (the float box's extents exactly).
+double half_area(const float (&lo)[3], const float (&hi)[3]) {
+  const double x = double(hi[0]) - lo[0], y = double(hi[1]) - lo[1], z = double(hi[2]) - lo[2];
+  return x * y + y * z + z * x;
+}
+
+// Half the surface area of slot i's box.
 template <int N>
 double half_area(const WideNode<N>& node, int i) {
-  const double x = double(node.bounds[1][i]) - node.bounds[0][i];
-  const double y = double(node.bounds[3][i]) - node.bounds[2][i];
-  const double z = double(node.bounds[5][i]) - node.bounds[4][i];
-  return x * y + y * z + z * x;
+  return half_area({node.bounds[0][i], node.bounds[2][i], node.bounds[4][i]},
+                   {node.bounds[1][i], node.bounds[3][i], node.bounds[5][i]});
 }
 
 std::uint32_t leaf_blocks(const TriangleBlock* first) {
@@ -35,14 +38,12 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks) {
   }
   // The root's box: the union of its children's (an unused slot's empty box adds nothing).
   const WideNode<N>& root = bvh.nodes[0];
-  WideNode<N> box{};
-  for (int r = 0; r < 6; ++r) {
-    const bool hi = r & 1;
-    float v = hi ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
-    for (int i = 0; i < N; ++i) v = hi ? std::max(v, root.bounds[r][i]) : std::min(v, root.bounds[r][i]);
-    box.bounds[r][0] = v;
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = *std::min_element(root.bounds[2 * a], root.bounds[2 * a] + N);
+    hi[a] = *std::max_element(root.bounds[2 * a + 1], root.bounds[2 * a + 1] + N);
   }
-  const double root_area = half_area(box, 0);
+  const double root_area = half_area(lo, hi);
   if (!(root_area > 0.0)) return sah;  // a flat or degenerate scene: no ratio to state
   sah.nodes = 1.0;
   for (const WideNode<N>& node : bvh.nodes)
