@@ -313,7 +313,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
       if (k == 0) goto pop;
       for (int a = 1; a < k; ++a)
         for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
-      for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
+      for (int j = 0; j < k; ++j) prefetch_ref(bvh.nodes.data(), blocks, hit[j].ref);
       for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
       ref = hit[k - 1].ref;
       rays = hit[k - 1].rays;
@@ -394,7 +394,7 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
         if (next) stack[sp++] = {ref, 0.0f, next};  // the previous child (ref reused below)
         ref = node.child[i];  // tentatively the child walked next
         next = in;
-        prefetch_ref(bvh, blocks, ref);
+        prefetch_ref(bvh.nodes.data(), blocks, ref);
       }
       if (!next) goto pop;
       rays = next;

@@ -172,33 +172,57 @@ inline constexpr int kBlockLines =
 static_assert(kBlockLines == 4);
 
 template <int N>
-MLIB_INLINE void prefetch_ref(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+MLIB_INLINE void prefetch_ref(const WideNode<N>* nodes, const TriangleBlock* blocks,
                               std::uint32_t ref) {
   if (ref & kLeaf)
     mlib::prefetch(blocks + (ref & ~kLeaf), kBlockLines);
   else
-    mlib::prefetch(&bvh.nodes[ref], kNodeLines<N>);
+    mlib::prefetch(nodes + ref, kNodeLines<N>);
 }
 
-// The closest triangle hit by `ray` in (t_min, h.t), updating h (t, u, v and prim = the
-// triangle's index) when one is found; ties at equal t go to the smaller index. `test` is
-// a FastTriangleTest or a WatertightTriangleTest built from `ray`.
-template <int N, class Test, bool Finite>
-inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
-                                  const Ray& ray, const RayPre& pre, const Test& test,
-                                  float t_min, Hit& result, TraversalCounts* counts) {
+// The nodes and blocks a walk visits, counted only when the caller asks for them (Count;
+// closest_triangle and any_triangle pick the walk by `counts`): the walks' loops are short of
+// registers, and two live counters pushed the stack index, the tree's node pointer and some
+// of the ray's constants out to memory. Without them, with the node pointer and the
+// prefetch flag held in locals and the hit returned by value (not written through a
+// pointer kept live), bench_trace's fast-test rays on the four bench-peer meshes ran (rt2's
+// ratio to Embree, old and new binaries in alternating order, six rounds, one thread):
+// incoherent -0.1 ... +5 %, shadow +4 ... +10 %, reflection +3.5 ... +6 %.
+template <bool Count>
+struct WalkCounts {
+  TraversalCounts c;
+  void node() { ++c.nodes; }
+  void blocks(int k) { c.blocks += std::uint64_t(k); }
+  void add_to(TraversalCounts* out) const { *out += c; }
+};
+template <>
+struct WalkCounts<false> {
+  void node() {}
+  void blocks(int) {}
+  void add_to(TraversalCounts*) const {}
+};
+
+// The closest triangle hit by `ray` in (t_min, h.t): h, with t, u, v and prim = the
+// triangle's index replaced when one is found; ties at equal t go to the smaller index.
+// `test` is a FastTriangleTest or a WatertightTriangleTest built from `ray` (taken by
+// value instead, so that no pointer to it stays live, the walk ran 4-17 % slower).
+template <int N, class Test, bool Finite, bool Count>
+inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                 const Ray& ray, const RayPre& pre, const Test& test,
+                                 float t_min, Hit h, TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   const NodeRay<N, Finite> nr(ray, pre);
   const V t_min_v = V::broadcast(t_min);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
-  Hit h = result;  // a local: no store below can alias it
-  TraversalCounts local;
+  WalkCounts<Count> local;
   // The pending subtrees and their entry distances, side by side (compress_in_order
   // writes N lanes at a time: N - 1 entries of slack).
   alignas(64) std::uint32_t stack_ref[kStackSize<N> + N - 1];
   alignas(64) float stack_t[kStackSize<N> + N - 1];
-  int sp = 0;
+  std::size_t sp = 0;
   std::uint32_t ref = bvh.root;
+  const WideNode<N>* const nodes = bvh.nodes.data();
+  const bool prefetch_pushed = bvh.prefetch_pushed;
   alignas(64) float entry_t[N];
   // Takes the hit n, lane `lane` of block b, when it is nearer than h (or as near, with a
   // smaller triangle index).
@@ -214,15 +238,15 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
   for (;;) {
     // Down through inner nodes, nearest child first.
     while (!(ref & kLeaf)) {
-      ++local.nodes;
-      const WideNode<N>& node = bvh.nodes[ref];
+      local.node();
+      const WideNode<N>& node = nodes[ref];
       V entry;
       const unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t * kSlabPad), entry);
       if (mask == 0) goto pop;
       const unsigned rest = mask & (mask - 1);
       if (rest == 0) {  // one child: no stack
         ref = node.child[std::countr_zero(mask)];
-        prefetch_ref(bvh, blocks, ref);
+        prefetch_ref(nodes, blocks, ref);
         continue;
       }
       if constexpr (kPushInOctantOrder<N>) {
@@ -230,11 +254,11 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
                                   // nearest (roughly) on top, without a branch per child
           const int pushed = compress_in_order(entry, node.child, node.octant_order,
                                                nr.order_shift, mask, stack_t + sp, stack_ref + sp);
-          if (bvh.prefetch_pushed)  // a large tree: all of them (WideBvh::prefetch_pushed)
-            for (int j = 0; j < pushed - 1; ++j) prefetch_ref(bvh, blocks, stack_ref[sp + j]);
-          sp += pushed - 1;
+          if (prefetch_pushed)  // a large tree: all of them (WideBvh::prefetch_pushed)
+            for (int j = 0; j < pushed - 1; ++j) prefetch_ref(nodes, blocks, stack_ref[sp + j]);
+          sp += std::size_t(pushed - 1);
           ref = stack_ref[sp];
-          prefetch_ref(bvh, blocks, ref);
+          prefetch_ref(nodes, blocks, ref);
           continue;
         }
       }
@@ -249,7 +273,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
           if (a.ref & b.ref & kLeaf) {  // two leaves: their first blocks in one 8-wide pass
             const TriangleBlock* ba = blocks + (a.ref & ~kLeaf);
             const TriangleBlock* bb = blocks + (b.ref & ~kLeaf);
-            local.blocks += 2;
+            local.blocks(2);
             const NearestHit n = test.nearest_pair(*ba, *bb, t_min_v, V::broadcast(h.t));
             if (n.lane >= 0) take(n.lane < 4 ? *ba : *bb, n, n.lane & 3);
             // A leaf of more blocks: the rest of it, as a leaf of its own, later.
@@ -262,9 +286,9 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
         const StackEntry farther = a_first ? b : a;
         stack_ref[sp] = farther.ref;
         stack_t[sp++] = farther.t;
-        prefetch_ref(bvh, blocks, farther.ref);
+        prefetch_ref(nodes, blocks, farther.ref);
         ref = a_first ? a.ref : b.ref;
-        prefetch_ref(bvh, blocks, ref);
+        prefetch_ref(nodes, blocks, ref);
         continue;
       }
       // Three or more (one node in eight here) in the 4-wide tree: sorted by entry
@@ -277,7 +301,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
       }
       for (int a = 1; a < k; ++a)
         for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
-      for (int j = 0; j < k; ++j) prefetch_ref(bvh, blocks, hit[j].ref);
+      for (int j = 0; j < k; ++j) prefetch_ref(nodes, blocks, hit[j].ref);
       for (int j = 0; j < k - 1; ++j) {
         stack_ref[sp] = hit[j].ref;
         stack_t[sp++] = hit[j].t;
@@ -286,7 +310,7 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
     }
     // A leaf: its blocks, until the one marked last.
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-      ++local.blocks;
+      local.blocks(1);
       const NearestHit n = test.nearest(*b, t_min_4, vfloat4::broadcast(h.t));
       if (n.lane >= 0) take(*b, n, n.lane);
       if (b->last()) break;
@@ -294,9 +318,8 @@ inline void closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* bl
   pop:
     for (;;) {  // the next pending subtree that can still hold a closer hit (or a tie)
       if (sp == 0) {
-        result = h;
-        if (counts) *counts += local;
-        return;
+        local.add_to(counts);
+        return h;
       }
       --sp;
       if (stack_t[sp] <= h.t * kSlabPad) {
@@ -313,15 +336,20 @@ MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
                                   TraversalCounts* counts) {
   if (bvh.root == kNoChild) return;
   const RayPre pre(ray);
-  if (tree_form(ray, pre))
-    closest_triangle_walk<N, Test, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
+  const bool tree = tree_form(ray, pre);
+  if (counts == nullptr && tree)
+    h = closest_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
+  else if (counts == nullptr)
+    h = closest_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
+  else if (tree)
+    h = closest_triangle_walk<N, Test, true, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
   else
-    closest_triangle_walk<N, Test, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
+    h = closest_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
 }
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
 // order, until it returns true; returns whether it did.
-template <int N, class Test, bool Finite, class OnHit>
+template <int N, class Test, bool Finite, bool Count, class OnHit>
 inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
                               const RayPre& pre, const Test& test, float t_min, float t_max,
                               OnHit&& on_hit, TraversalCounts* counts) {
@@ -331,15 +359,16 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   // Inclusive upper bound of the block test, strictly below t_max.
   const vfloat4 t_below_4 = vfloat4::broadcast(float_below(t_max));
-  TraversalCounts local;
+  WalkCounts<Count> local;
   alignas(64) std::uint32_t stack[kStackSize<N> + N - 1];  // slack: compress_in_order
-  int sp = 0;
+  std::size_t sp = 0;
   std::uint32_t ref = bvh.root;
+  const WideNode<N>* const nodes = bvh.nodes.data();
   bool stopped = false;
   for (;;) {
     while (!(ref & kLeaf)) {
-      ++local.nodes;
-      const WideNode<N>& node = bvh.nodes[ref];
+      local.node();
+      const WideNode<N>& node = nodes[ref];
       V entry;
       unsigned mask = nr.test(node, t_min_v, t_max_v, entry);
       if (mask == 0) goto pop;
@@ -351,22 +380,23 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
                                   // the surface a shadow ray leaves: 5-10 % faster on two
                                   // of the four bench_trace meshes, 1-3 % slower on two)
           alignas(64) float unused_t[N];
-          sp += compress_in_order(entry, node.child, node.octant_order, 3 * 7 - nr.order_shift,
-                                  mask, unused_t, stack + sp) - 1;
+          sp += std::size_t(compress_in_order(entry, node.child, node.octant_order,
+                                              3 * 7 - nr.order_shift, mask, unused_t,
+                                              stack + sp) - 1);
           ref = stack[sp];
-          prefetch_ref(bvh, blocks, ref);
+          prefetch_ref(nodes, blocks, ref);
           continue;
         }
       }
       ref = node.child[std::countr_zero(mask)];
-      prefetch_ref(bvh, blocks, ref);
+      prefetch_ref(nodes, blocks, ref);
       for (mask &= mask - 1; mask; mask &= mask - 1) {
         stack[sp++] = node.child[std::countr_zero(mask)];
-        prefetch_ref(bvh, blocks, stack[sp - 1]);
+        prefetch_ref(nodes, blocks, stack[sp - 1]);
       }
     }
     for (const TriangleBlock* b = blocks + (ref & ~kLeaf);; ++b) {
-      ++local.blocks;
+      local.blocks(1);
       const BlockHits bh = test(*b, t_min_4, t_below_4);
       for (unsigned m = bh.mask; m; m &= m - 1) {
         const int l = std::countr_zero(m);
@@ -382,7 +412,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
     ref = stack[--sp];
   }
 done:
-  if (counts) *counts += local;
+  local.add_to(counts);
   return stopped;
 }
 
@@ -392,11 +422,18 @@ MLIB_INLINE bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks
                               TraversalCounts* counts) {
   if (bvh.root == kNoChild) return false;
   const RayPre pre(ray);
-  if (tree_form(ray, pre))
-    return any_triangle_walk<N, Test, true>(bvh, blocks, ray, pre, test, t_min, t_max, on_hit,
-                                            counts);
-  return any_triangle_walk<N, Test, false>(bvh, blocks, ray, pre, test, t_min, t_max, on_hit,
-                                           counts);
+  const bool tree = tree_form(ray, pre);
+  if (counts == nullptr && tree)
+    return any_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                   on_hit, counts);
+  if (counts == nullptr)
+    return any_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                    on_hit, counts);
+  if (tree)
+    return any_triangle_walk<N, Test, true, true>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                  on_hit, counts);
+  return any_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, t_max,
+                                                 on_hit, counts);
 }
 
 }  // namespace rt2::RT2_ISA

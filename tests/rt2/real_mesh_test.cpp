@@ -1,9 +1,10 @@
 // The wide BVH on real meshes: 10^5 random rays per mesh (release; 10^4 under sanitizers),
 // for every instruction set and both triangle tests, with and without the prefetches of a
-// large tree (WideBvh::prefetch_pushed), give exactly the closest hit of the
+// large tree (WideBvh::prefetch_pushed), counting the nodes and blocks visited or not (the
+// walks compiled with and without counters, wide_traverse.h), give exactly the closest hit of the
 // previous kernel — the binary SAH tree walked one triangle at a time with the one-triangle
 // tests of triangle.h (itself checked against brute force over every triangle on random
-// soups, bvh_test.cpp). Meshes: those of scripts/fetch-meshes that are present (scripts/test
+// soups, bvh_test.cpp); the any-hit walk finds a hit exactly where that kernel does. Meshes: those of scripts/fetch-meshes that are present (scripts/test
 // fetches the bunny); a missing one is skipped with its name.
 #include <gtest/gtest.h>
 
@@ -63,7 +64,7 @@ class BinaryOracle {
 
 class RealMesh : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(RealMesh, EveryIsaTriangleTestAndPrefetchFindsThePreviousKernelsHitOnRandomRays) {
+TEST_P(RealMesh, EveryIsaTriangleTestPrefetchAndCountingFindsThePreviousKernelsHitOnRandomRays) {
   const std::string path = std::string(RT2_SOURCE_DIR) + "/data/meshes/" + GetParam() + ".obj";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not fetched (scripts/fetch-meshes)";
   Scene scene = frame_obj(path);
@@ -82,13 +83,19 @@ TEST_P(RealMesh, EveryIsaTriangleTestAndPrefetchFindsThePreviousKernelsHitOnRand
     Accel acc = Accel::build(scene, BvhConfig{}, isa);
     ASSERT_EQ(acc.tris.size(), first.tris.size());
     EXPECT_FALSE(acc.bvh8.prefetch_pushed);  // these trees are below kPrefetchPushedBytes
-    for (int run = 0; run < 4; ++run) {
-      const bool watertight = run & 1, prefetch = run & 2;
+    for (int run = 0; run < 8; ++run) {
+      const bool watertight = run & 1, prefetch = run & 2, counted = run & 4;
       acc.bvh8.prefetch_pushed = prefetch;
       std::vector<Hit> hits(rays.size());
       const std::vector<float> t_max(rays.size(), kInfinity);
-      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
-      std::size_t found = 0, differ = 0;
+      TraversalCounts counts;
+      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data(),
+                    counted ? &counts : nullptr);
+      std::vector<std::uint8_t> occluded(rays.size());
+      trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data(),
+                     counted ? &counts : nullptr);
+      if (counted) EXPECT_GE(counts.nodes, 2 * rays.size()) << isa_name(isa);  // roots, at least
+      std::size_t found = 0, differ = 0, occlusion_differs = 0;
       for (std::size_t i = 0; i < rays.size(); ++i) {
         const Hit& e = expected[watertight][i];
         found += e.found();
@@ -96,9 +103,13 @@ TEST_P(RealMesh, EveryIsaTriangleTestAndPrefetchFindsThePreviousKernelsHitOnRand
         // default build), so the same index means the same triangle.
         differ += !(hits[i].t == (e.found() ? e.t : kInfinity) && hits[i].prim == e.prim &&
                     (!e.found() || (hits[i].u == e.u && hits[i].v == e.v)));
+        occlusion_differs += occluded[i] != (e.found() ? 1 : 0);
       }
       EXPECT_EQ(differ, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast")
-                            << (prefetch ? ", every pushed child prefetched" : "");
+                            << (prefetch ? ", every pushed child prefetched" : "")
+                            << (counted ? ", counted" : "");
+      EXPECT_EQ(occlusion_differs, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast")
+                                       << (counted ? ", counted" : "") << ": any hit";
       EXPECT_GT(found, rays.size() / 3);
     }
   }
