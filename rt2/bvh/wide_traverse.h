@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include "mlib/vfloat.h"
@@ -181,7 +182,7 @@ MLIB_INLINE void prefetch_ref(const WideNode<N>* nodes, const TriangleBlock* blo
 }
 
 // The nodes and blocks a walk visits, counted only when the caller asks for them (Count;
-// closest_triangle and any_triangle pick the walk by `counts`): the walks' loops are short of
+// with_walk_form picks the walk by `counts`): the walks' loops are short of
 // registers, and two live counters pushed the stack index, the tree's node pointer and some
 // of the ray's constants out to memory. Without them, with the node pointer and the
 // prefetch flag held in locals and the hit returned by value (not written through a
@@ -330,21 +331,27 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
   }
 }
 
+// walk(finite, count) with the walks' two compile-time choices as std::bool_constant:
+// Finite (the ray takes the node test's tree form) and Count (the caller wants counts).
+template <class Walk>
+MLIB_INLINE decltype(auto) with_walk_form(const Ray& ray, const RayPre& pre,
+                                          const TraversalCounts* counts, Walk&& walk) {
+  using yes = std::true_type;
+  using no = std::false_type;
+  if (tree_form(ray, pre)) return counts ? walk(yes{}, yes{}) : walk(yes{}, no{});
+  return counts ? walk(no{}, yes{}) : walk(no{}, no{});
+}
+
 template <int N, class Test>
 MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                   const Ray& ray, const Test& test, float t_min, Hit& h,
                                   TraversalCounts* counts) {
   if (bvh.root == kNoChild) return;
   const RayPre pre(ray);
-  const bool tree = tree_form(ray, pre);
-  if (counts == nullptr && tree)
-    h = closest_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
-  else if (counts == nullptr)
-    h = closest_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, h, counts);
-  else if (tree)
-    h = closest_triangle_walk<N, Test, true, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
-  else
-    h = closest_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, h, counts);
+  h = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
+    return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
+        bvh, blocks, ray, pre, test, t_min, h, counts);
+  });
 }
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
@@ -422,18 +429,10 @@ MLIB_INLINE bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks
                               TraversalCounts* counts) {
   if (bvh.root == kNoChild) return false;
   const RayPre pre(ray);
-  const bool tree = tree_form(ray, pre);
-  if (counts == nullptr && tree)
-    return any_triangle_walk<N, Test, true, false>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                   on_hit, counts);
-  if (counts == nullptr)
-    return any_triangle_walk<N, Test, false, false>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                    on_hit, counts);
-  if (tree)
-    return any_triangle_walk<N, Test, true, true>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                  on_hit, counts);
-  return any_triangle_walk<N, Test, false, true>(bvh, blocks, ray, pre, test, t_min, t_max,
-                                                 on_hit, counts);
+  return with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
+    return any_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
+        bvh, blocks, ray, pre, test, t_min, t_max, on_hit, counts);
+  });
 }
 
 }  // namespace rt2::RT2_ISA

@@ -563,7 +563,9 @@ TEST(Bvh, EveryPushedChildIsPrefetchedOnlyInTreesOfKPrefetchPushedBytes) {
     const std::size_t bytes =
         c.wide.nodes.size() * sizeof(WideNode<8>) + c.blocks.size() * sizeof(TriangleBlock);
     EXPECT_EQ(c.wide.prefetch_pushed, bytes >= kPrefetchPushedBytes) << bytes << " bytes";
-    if (triangles > 1000u) EXPECT_TRUE(c.wide.prefetch_pushed) << bytes << " bytes";
+    if (triangles > 1000u) {
+      EXPECT_TRUE(c.wide.prefetch_pushed) << bytes << " bytes";
+    }
   }
 }
 

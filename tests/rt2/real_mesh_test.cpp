@@ -94,7 +94,9 @@ TEST_P(RealMesh, EveryIsaTriangleTestPrefetchAndCountingFindsThePreviousKernelsH
       std::vector<std::uint8_t> occluded(rays.size());
       trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data(),
                      counted ? &counts : nullptr);
-      if (counted) EXPECT_GE(counts.nodes, 2 * rays.size()) << isa_name(isa);  // roots, at least
+      if (counted) {
+        EXPECT_GE(counts.nodes, 2 * rays.size()) << isa_name(isa);  // roots, at least
+      }
       std::size_t found = 0, differ = 0, occlusion_differs = 0;
       for (std::size_t i = 0; i < rays.size(); ++i) {
         const Hit& e = expected[watertight][i];
