@@ -62,6 +62,8 @@
 // --embree-config isa=sse4.2 (or avx2, ...) holds it to a narrower one.
 // Build time: one thread, the median of --build-reps builds (5; interleaved like the
 // runs): rt2's Accel::build, Embree's rtcCommitScene on a device created with "threads=1".
+// Each engine's previous structure is released before its clock starts (rt2's used to be
+// freed inside its timed assignment, and could not lend its pages to the next build).
 // Bytes per triangle: rt2's accel_bytes; Embree's net bytes allocated during rtcCommitScene
 // (its memory monitor: BVH and leaf triangles; the shared vertex and index arrays are the
 // application's).
@@ -461,6 +463,7 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
       o.embree ? bench::embree_device(o.device_config("threads=1").c_str()) : nullptr;
 #endif
   for (int rep = 0; rep < o.build_reps; ++rep) {
+    acc = rt2::Accel{};
     const auto t0 = std::chrono::steady_clock::now();
     acc = rt2::Accel::build(m.scene, rt2::BvhConfig{}, o.isa);
     rt2_ms.push_back(ms_since(t0));
