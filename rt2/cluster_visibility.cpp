@@ -97,7 +97,7 @@ bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
 bool sphere_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
                   std::vector<ClusterVisibility::Occluder>& out) {
   if (acc.spheres.empty()) return true;
-  const std::vector<BvhNode>& nodes = acc.sphere_bvh.nodes;
+  const auto& nodes = acc.sphere_bvh.nodes;
   std::uint32_t stack[kMaxBvhDepth + 1];
   int top = 0;
   stack[top++] = 0;

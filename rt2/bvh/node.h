@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mlib/huge_pages.h"
+
 namespace rt2 {
 
 // 32 bytes, two per cache line: bounds as two float triples, each followed by a 32-bit
@@ -50,7 +52,10 @@ struct BvhStats {
 };
 
 struct Bvh {
-  std::vector<BvhNode> nodes;      // empty when there are no primitives
+  // Empty when there are no primitives. On huge pages once large (mlib/huge_pages.h): the
+  // builder reserves two nodes per primitive and uses fewer than one, and fresh memory
+  // is cheaper to fill in 2 MiB pages.
+  mlib::HugePageVector<BvhNode> nodes;
   std::vector<std::uint32_t> order;  // primitive indices in leaf order
   BvhStats stats;
 };

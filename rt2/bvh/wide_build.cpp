@@ -102,59 +102,61 @@ class Collapser {
   // bench_trace 1,844 8-wide nodes against 1,168 now (Embree's tree: 1,232), 84 bytes per
   // triangle against 75, and incoherent rays 5-10 % faster with the fast triangle test and
   // 6-16 % with the watertight one on the four bench-peer meshes (bench_trace, old and new
-  // alternated). The tables take 9 floats and 19 bytes per binary node (N = 8) while the
-  // tree is collapsed (about 35 bytes per triangle, on huge pages; with doubles 57, and the
-  // plan of a 1.4M-triangle mesh took 48 ms rather than 30), freed after. Costs summed in
-  // float may pick, where two plans nearly tie, one a few ulps of the cost above the least.
-  // cost_[m][k]: the least cost of binary subtree m held in at most k slots of a wide node;
-  // used_[m][k]: the slots that least cost takes; split_[m][k]: the slots its first child's
-  // subtree takes (0: m itself in one slot, a wide node of its own).
+  // alternated). Costs summed in float may pick, where two plans nearly tie, one a few ulps
+  // of the cost above the least.
+  // A subtree's costs live only while its parent is planned (the walk is depth first), so
+  // what stays is the choice: choice_[m][k] for binary subtree m held in at most k slots of
+  // a wide node, the slots the least cost takes (bits 0-3) and the slots its first child's
+  // subtree takes (bits 4-7; 0: m itself in one slot, a wide node of its own). 10 bytes
+  // per binary node (N = 8; a table of the costs too took 55, about 35 bytes per triangle,
+  // and a plan of a 1.4M-triangle mesh touched 60 MB of fresh memory rather than 11).
   void plan() {
-    const std::size_t count = bvh_.nodes.size();
-    cost_.assign(count, {});
-    used_.assign(count, {});
-    split_.assign(count, {});
-    wide_split_.assign(count, 0);
-    for (std::size_t i = count; i-- > 0;) {
-      const BvhNode& node = bvh_.nodes[i];
-      if (node.is_leaf()) {
-        for (int k = 1; k <= N; ++k) cost_[i][k] = 0.0f, used_[i][k] = 1, split_[i][k] = 0;
-        continue;
-      }
-      const std::size_t l = i + 1, r = node.offset;
-      float d[N + 1];
-      std::uint8_t arg[N + 1];
-      for (int k = 2; k <= N; ++k) {
-        d[k] = std::numeric_limits<float>::infinity();
-        arg[k] = 1;
-        for (int a = 1; a < k; ++a) {
-          const float c = cost_[l][a] + cost_[r][k - a];
-          if (c < d[k]) d[k] = c, arg[k] = std::uint8_t(a);
-        }
-      }
-      wide_split_[i] = arg[N];
-      cost_[i][1] = area(node) + d[N];
-      used_[i][1] = 1;
-      split_[i][1] = 0;
-      for (int k = 2; k <= N; ++k) {
-        if (d[k] < cost_[i][k - 1]) {
-          cost_[i][k] = d[k], used_[i][k] = std::uint8_t(k), split_[i][k] = arg[k];
-        } else {
-          cost_[i][k] = cost_[i][k - 1], used_[i][k] = used_[i][k - 1];
-          split_[i][k] = split_[i][k - 1];
-        }
+    choice_.assign(bvh_.nodes.size(), {});
+    wide_split_.assign(bvh_.nodes.size(), 0);
+    plan(0);
+  }
+
+  // cost[k]: the least cost of binary subtree m held in at most k slots (k = 1 ... N).
+  using Costs = std::array<float, N + 1>;
+  Costs plan(std::uint32_t m) {
+    const BvhNode& node = bvh_.nodes[m];
+    Costs cost{};
+    if (node.is_leaf()) {
+      for (int k = 1; k <= N; ++k) choice_[m][k] = 1;
+      return cost;
+    }
+    const Costs l = plan(m + 1), r = plan(node.offset);
+    float d[N + 1];
+    std::uint8_t arg[N + 1];
+    for (int k = 2; k <= N; ++k) {
+      d[k] = std::numeric_limits<float>::infinity();
+      arg[k] = 1;
+      for (int a = 1; a < k; ++a) {
+        const float c = l[a] + r[k - a];
+        if (c < d[k]) d[k] = c, arg[k] = std::uint8_t(a);
       }
     }
+    wide_split_[m] = arg[N];
+    cost[1] = area(node) + d[N];
+    choice_[m][1] = 1;
+    for (int k = 2; k <= N; ++k) {
+      if (d[k] < cost[k - 1]) {
+        cost[k] = d[k], choice_[m][k] = std::uint8_t(k | arg[k] << 4);
+      } else {
+        cost[k] = cost[k - 1], choice_[m][k] = choice_[m][k - 1];
+      }
+    }
+    return cost;
   }
 
   // Appends to kids the slots binary subtree m takes when given at most k.
   void expand(std::uint32_t m, int k, std::uint32_t* kids, int& n) const {
     const BvhNode& node = bvh_.nodes[m];
-    if (node.is_leaf() || split_[m][k] == 0) {
+    const int used = choice_[m][k] & 15, a = choice_[m][k] >> 4;
+    if (node.is_leaf() || a == 0) {
       kids[n++] = m;
       return;
     }
-    const int used = used_[m][k], a = split_[m][k];
     expand(m + 1, a, kids, n);
     expand(node.offset, used - a, kids, n);
   }
@@ -198,8 +200,7 @@ class Collapser {
     return kLeaf | first;
   }
 
-  mlib::HugePageVector<std::array<float, N + 1>> cost_;
-  mlib::HugePageVector<std::array<std::uint8_t, N + 1>> used_, split_;
+  mlib::HugePageVector<std::array<std::uint8_t, N + 1>> choice_;
   mlib::HugePageVector<std::uint8_t> wide_split_;
   const Bvh& bvh_;
   const std::span<const Triangle> tris_;

@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "rt2/shapes.h"
@@ -130,6 +133,47 @@ TEST(Trace, AccelBytesCountsTheTreesAndLeafBlocks) {
   EXPECT_EQ(accel_bytes(Accel{}), 0u);
   // A block holds at most 4 triangles: at least 40 bytes per triangle.
   EXPECT_GE(f.acc.blocks.size() * sizeof(TriangleBlock), f.acc.tris.size() * 40);
+}
+
+// Accel::build finds each triangle's mesh by a search over the meshes' first triangles: every
+// face of every mesh (an empty one between them, one of a single face after it) is in the
+// Accel once, with its own material, and the hits name those triangles.
+TEST(Trace, AccelHoldsEveryFaceOfEveryMeshOnceWithItsMaterial) {
+  std::vector<Mesh> meshes = {make_icosphere(vec4(-0.4f, 0.1f, 0.0f), 0.5f, 2, 0), Mesh{},
+                              test::random_soup(200, 0.4f, 21), Mesh{}};
+  meshes[3].positions = {vec4(0, 0, 2), vec4(1, 0, 2), vec4(0, 1, 2)};
+  meshes[3].faces = {{0, 1, 2}};
+  Scene s = test::geometry_scene(meshes);
+  for (std::uint32_t m = 1; m <= 3; ++m) s.add_material("m" + std::to_string(m), Material{});
+  for (std::uint32_t m = 0; m < s.meshes.size(); ++m)
+    s.meshes[m].face_materials.assign(s.meshes[m].faces.size(), m);
+  using Key = std::array<float, 10>;  // three vertices, then the material
+  const auto key = [](const Triangle& t, std::uint32_t material) {
+    return Key{t.v0[0], t.v0[1], t.v0[2], t.v1[0], t.v1[1], t.v1[2],
+               t.v2[0], t.v2[1], t.v2[2], float(material)};
+  };
+  std::vector<Key> want, got;
+  for (const Mesh& m : s.meshes)
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+      const auto& v = m.faces[f];
+      want.push_back(key(Triangle::make(m.positions[v[0]], m.positions[v[1]], m.positions[v[2]]),
+                         m.face_materials[f]));
+    }
+  const Accel acc = Accel::build(s, BvhConfig{});
+  ASSERT_EQ(acc.tris.size(), want.size());
+  ASSERT_EQ(acc.tri_materials.size(), want.size());
+  for (std::size_t k = 0; k < acc.tris.size(); ++k) got.push_back(key(acc.tris[k], acc.tri_materials[k]));
+  std::sort(want.begin(), want.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, want);
+  // The last mesh's one triangle, hit head on, is found with its material.
+  const Ray down(vec4(0.25f, 0.25f, 5.0f), vec4(0.0f, 0.0f, -1.0f));
+  const float t_max = kInfinity;
+  Hit h;
+  trace_closest(acc, TraceOptions{}, &down, &t_max, 1, &h);
+  ASSERT_TRUE(h.found());
+  EXPECT_EQ(h.t, 3.0f);
+  EXPECT_EQ(acc.tri_materials[prim_index(h.prim)], 3u);
 }
 
 }  // namespace
