@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <utility>
 
 #include "rt2/aabb.h"
 #include "rt2/camera.h"
@@ -161,6 +163,31 @@ TEST(Triangle, NormalIsCounterClockwiseCross) {
 
 // --- boxes -------------------------------------------------------------------------------
 const Aabb kBox{vec4(-1, -1, -1), vec4(1, 1, 1)};
+
+// WatertightRay reads its axes from a table (kWatertightAxes) instead of branching. Oracle:
+// the branching rule of Woop et al. as it was written before, on every direction whose
+// components are drawn from values with ties, zeros of both signs, infinities and NaN.
+TEST(Triangle, WatertightRayTakesTheSameAxesAsTheBranchingRuleOnTiesZerosAndNan) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 2.0f, -2.0f, 0.5f, -3.0f, inf, -inf, nan};
+  int checked = 0;
+  for (float x : values)
+    for (float y : values)
+      for (float z : values) {
+        const Ray r(vec4(0.0f, 0.0f, 0.0f), vec4(x, y, z));
+        const float ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+        const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+        int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+        if (r.dir[kz] < 0.0f) std::swap(kx, ky);
+        const WatertightRay w(r);
+        EXPECT_EQ(w.kz, kz) << x << " " << y << " " << z;
+        EXPECT_EQ(w.kx, kx) << x << " " << y << " " << z;
+        EXPECT_EQ(w.ky, ky) << x << " " << y << " " << z;
+        ++checked;
+      }
+  EXPECT_EQ(checked, 11 * 11 * 11);
+}
 
 TEST(Aabb, SlabTestReturnsTheEntryDistance) {
   const RayPre r(ray(vec4(0, 0, 5), vec4(0, 0, -1)));
