@@ -92,9 +92,9 @@ struct WatertightRay {
   // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2), kx = kz + 1 and ky = kz + 2
   // (mod 3), swapped when dir[kz] < 0; all read from one table (kWatertightAxes) indexed by
   // the comparisons and signs, without a branch: for random directions both choices go
-  // either way at random, and their mispredicted branches cost 5-10 % of an incoherent
-  // ray's time (bench_trace), while a chain of lookups (kz, then kx from kz, ...) delayed
-  // the shear of every ray, and coherent rays, which predicted the branches, by 2-5 %.
+  // either way at random, and their mispredicted branches cost watertight incoherent rays
+  // 5-12 % (bench_trace), while a chain of lookups (kz, then kx from kz, ...) delayed the
+  // shear of every ray and slowed primary rays, which predicted the branches, by 2-13 %.
   explicit WatertightRay(const Ray& r) : org(r.org) {
     const float ax = std::fabs(r.dir[0]), ay = std::fabs(r.dir[1]), az = std::fabs(r.dir[2]);
     const unsigned axes = kWatertightAxes.of[unsigned(ax > ay) | unsigned(ay > az) << 1 |
