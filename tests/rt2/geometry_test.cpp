@@ -161,9 +161,6 @@ TEST(Triangle, NormalIsCounterClockwiseCross) {
   EXPECT_EQ(kTri.vertex(2), vec4(0, 1, 0));
 }
 
-// --- boxes -------------------------------------------------------------------------------
-const Aabb kBox{vec4(-1, -1, -1), vec4(1, 1, 1)};
-
 // WatertightRay reads its axes from a table (kWatertightAxes) instead of branching. Oracle:
 // the branching rule of Woop et al. as it was written before, on every direction whose
 // components are drawn from values with ties, zeros of both signs, infinities and NaN.
@@ -188,6 +185,9 @@ TEST(Triangle, WatertightRayTakesTheSameAxesAsTheBranchingRuleOnTiesZerosAndNan)
       }
   EXPECT_EQ(checked, 11 * 11 * 11);
 }
+
+// --- boxes -------------------------------------------------------------------------------
+const Aabb kBox{vec4(-1, -1, -1), vec4(1, 1, 1)};
 
 TEST(Aabb, SlabTestReturnsTheEntryDistance) {
   const RayPre r(ray(vec4(0, 0, 5), vec4(0, 0, -1)));
