@@ -18,9 +18,10 @@
 #if defined(__AVX512F__) && !defined(MLIB_SCALAR)
 #include "mlib/vfloat16_avx512.h"
 #endif
-// compress_in_order(vfloat8, ...): one file per instruction set.
+// compress_in_order(vfloat8, ...) and (vfloat16, ...): one file per instruction set.
 #if defined(__AVX512VL__) && defined(__AVX512DQ__) && !defined(MLIB_SCALAR)
 #include "mlib/vfloat8_order_avx512.h"
+#include "mlib/vfloat16_order_avx512.h"
 #elif defined(__AVX2__) && !defined(MLIB_SCALAR)
 #include "mlib/vfloat8_order_avx2.h"
 #endif

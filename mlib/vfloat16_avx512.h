@@ -50,6 +50,8 @@ MLIB_INLINE vfloat16 operator+(vfloat16 a, vfloat16 b) { return {_mm512_add_ps(a
 MLIB_INLINE vfloat16 operator-(vfloat16 a, vfloat16 b) { return {_mm512_sub_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat16 operator*(vfloat16 a, vfloat16 b) { return {_mm512_mul_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat16 operator/(vfloat16 a, vfloat16 b) { return {_mm512_div_ps(a.v, b.v)}; }
+// a * b + c, rounded once.
+MLIB_INLINE vfloat16 fmadd(vfloat16 a, vfloat16 b, vfloat16 c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
 // The SSE rule: when a lane is NaN, the second operand's lane.
 MLIB_INLINE vfloat16 min(vfloat16 a, vfloat16 b) { return {_mm512_min_ps(a.v, b.v)}; }
 MLIB_INLINE vfloat16 max(vfloat16 a, vfloat16 b) { return {_mm512_max_ps(a.v, b.v)}; }

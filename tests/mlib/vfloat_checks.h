@@ -164,6 +164,8 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
       expect(std::bit_cast<std::uint32_t>(out[i]) ==
                  std::bit_cast<std::uint32_t>(i < 4 ? hi[i] : lo[i - 4]),
              "from_halves", i);
+  }
+  if constexpr (N >= 8) {  // vfloat8 and vfloat16
     // fmadd rounds once: (1 + 2^-12)^2 - (1 + 2^-11) is 2^-24 exactly, which the product
     // rounded first would lose (to 0); and the exact sum does not overflow where the
     // product alone would.
@@ -182,46 +184,55 @@ int check_vfloat(char (&first)[kFirstFailureSize]) {
   return failures;
 }
 
-// compress_in_order (vfloat8 only; the AVX2 or the AVX-512 form, whichever the calling unit
-// was built for) against the plain loop it stands for: every mask of eight lanes, under
-// permutations packed three bits a lane at every shift an octant order uses.
+// compress_in_order (vfloat8: the AVX2 or the AVX-512 form, whichever the calling unit was
+// built for; vfloat16: AVX-512) against the plain loop it stands for: every mask of the
+// lanes (of sixteen, every 7th and the full one), under permutations packed three bits a
+// lane (four for sixteen lanes) at every shift an octant order uses.
 // In an unnamed namespace: the AVX2 and the AVX-512 units each instantiate it for vfloat8
 // with their own compress_in_order, and two bodies under one symbol would leave the
 // linker to pick either.
 namespace {
-template <class V>  // vfloat8: a template, so that only the units built for it instantiate it
+template <class V>  // a template, so that only the units built for V instantiate it
 int check_compress_in_order(char (&first)[kFirstFailureSize]) {
+  constexpr int N = V::size, bits = N == 8 ? 3 : 4;
+  constexpr unsigned lane_mask = N - 1;
   int failures = 0;
   first[0] = 0;
-  alignas(64) float t[8];
-  alignas(64) std::uint32_t ids[8], order[8];
-  for (int i = 0; i < 8; ++i) {
+  alignas(64) float t[N];
+  alignas(64) std::uint32_t ids[N], order[N];
+  for (int i = 0; i < N; ++i) {
     t[i] = 0.5f * float(i) - 1.0f;
     ids[i] = 0x80000000u | std::uint32_t(100 + i);  // the top bit set, as a leaf reference
   }
-  // Eight permutations, one per 3-bit field: field o of position j holds (j * (2o + 1) + o) & 7.
-  for (int j = 0; j < 8; ++j) {
+  // Eight permutations, one per field: field o of position j holds (j * (2o + 1) + o) mod N.
+  for (int j = 0; j < N; ++j) {
     order[j] = 0;
-    for (int o = 0; o < 8; ++o) order[j] |= std::uint32_t((j * (2 * o + 1) + o) & 7) << (3 * o);
+    for (int o = 0; o < 8; ++o)
+      order[j] |= std::uint32_t((j * (2 * o + 1) + o) & int(lane_mask)) << (bits * o);
   }
   const V vt = V::load(t);
-  for (int o = 0; o < 8; ++o)
-    for (unsigned hit = 0; hit < 256; ++hit) {
-      alignas(64) float t_out[8];
-      alignas(64) std::uint32_t id_out[8];
-      const int count = compress_in_order(vt, ids, order, 3 * o, hit, t_out, id_out);
-      int k = 0;
-      bool ok = true;
-      for (int j = 0; j < 8; ++j) {
-        const unsigned lane = order[j] >> (3 * o) & 7u;
-        if (!(hit >> lane & 1u)) continue;
-        ok = ok && t_out[k] == t[lane] && id_out[k] == ids[lane];
-        ++k;
-      }
-      ok = ok && count == k;
-      if (!ok && failures++ == 0)
-        std::snprintf(first, sizeof first, "compress_in_order: octant %d, mask 0x%02x", o, hit);
+  const auto check = [&](int o, unsigned hit) {
+    alignas(64) float t_out[N];
+    alignas(64) std::uint32_t id_out[N];
+    const int count = compress_in_order(vt, ids, order, bits * o, hit, t_out, id_out);
+    int k = 0;
+    bool ok = true;
+    for (int j = 0; j < N; ++j) {
+      const unsigned lane = order[j] >> (bits * o) & lane_mask;
+      if (!(hit >> lane & 1u)) continue;
+      ok = ok && t_out[k] == t[lane] && id_out[k] == ids[lane];
+      ++k;
     }
+    ok = ok && count == k;
+    if (!ok && failures++ == 0)
+      std::snprintf(first, sizeof first, "compress_in_order: %d lanes, octant %d, mask 0x%04x",
+                    N, o, hit);
+  };
+  const unsigned all = (1u << N) - 1;
+  for (int o = 0; o < 8; ++o) {
+    for (unsigned hit = 0; hit < all; hit += N == 8 ? 1 : 7) check(o, hit);
+    check(o, all);
+  }
   return failures;
 }
 }  // namespace

@@ -30,7 +30,7 @@ TEST(Vfloat, SixteenLanesFollowTheSameRulesOnAnAvx512Cpu) {
   EXPECT_EQ(check_vfloat16(first), 0) << "first failure: " << first;
 }
 
-TEST(Vfloat, CompressInOrderEqualsThePlainLoopForEveryMaskAndOctantWithAvx2AndAvx512) {
+TEST(Vfloat, CompressInOrderEqualsThePlainLoopForEveryMaskAndOctantWithAvx2AndAvx512For8And16Lanes) {
   if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
   char first[kFirstFailureSize];
   EXPECT_EQ(check_compress_in_order_avx2(first), 0) << "AVX2: " << first;
