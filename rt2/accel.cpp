@@ -66,7 +66,10 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
       acc.tri_normals.push_back({m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]});
     }
   }
-  if (bvh_width(acc.isa) == 8) {
+  if (bvh_width(acc.isa) == 16) {
+    acc.bvh16 = collapse_bvh<16>(bvh, acc.tris, acc.blocks);
+    acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh16.nodes.size());
+  } else if (bvh_width(acc.isa) == 8) {
     acc.bvh8 = collapse_bvh<8>(bvh, acc.tris, acc.blocks);
     acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh8.nodes.size());
   } else {
@@ -107,12 +110,17 @@ Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
 
 std::size_t Accel::bvh_bytes() const {
   return bvh4.nodes.size() * sizeof(WideNode<4>) + bvh8.nodes.size() * sizeof(WideNode<8>) +
-         blocks.size() * sizeof(TriangleBlock) + sphere_bvh.nodes.size() * sizeof(BvhNode) +
+         bvh16.nodes.size() * sizeof(WideNode<16>) + blocks.size() * sizeof(TriangleBlock) +
+         sphere_bvh.nodes.size() * sizeof(BvhNode) +
          sphere_bvh.order.size() * sizeof(std::uint32_t);
 }
 
 WideSah Accel::tree_sah() const {
-  return bvh_width(isa) == 8 ? wide_sah(bvh8, blocks.data()) : wide_sah(bvh4, blocks.data());
+  switch (bvh_width(isa)) {
+    case 16: return wide_sah(bvh16, blocks.data());
+    case 8: return wide_sah(bvh8, blocks.data());
+    default: return wide_sah(bvh4, blocks.data());
+  }
 }
 
 }  // namespace rt2

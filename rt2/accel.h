@@ -3,7 +3,7 @@
 //
 // Primitives are kept per kind in contiguous arrays (no virtual call per test), each in the
 // leaf order of its tree. Triangles: the binary SAH tree (bvh/build.h) collapsed into
-// nodes of 4 or 8 children, the width of the instruction set chosen for tracing
+// nodes of 4, 8 or 16 children, the width of the instruction set chosen for tracing
 // (rt2/isa.h), whose leaves are TriangleBlocks of four triangles tested together; `tris`
 // keeps each triangle whole for shading. Spheres (usually few) keep the binary tree. The
 // queries (closest hit, transmittance) are compiled per instruction set: rt2/query.h.
@@ -33,6 +33,7 @@ struct Accel {
   // blocks, and per triangle (by the index blocks hold) its data for shading.
   WideBvh<4> bvh4;
   WideBvh<8> bvh8;
+  WideBvh<16> bvh16;
   TriangleBlocks blocks;
   mlib::HugePageVector<Triangle> tris;  // on huge pages once large: read per hit
   std::vector<std::uint32_t> tri_materials;
@@ -56,10 +57,12 @@ struct Accel {
   // Builds both trees with `config`, the triangle tree `bvh_width(isa)` wide.
   static Accel build(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
 
-  // The triangle tree of width N (4 or 8).
+  // The triangle tree of width N (4, 8 or 16).
   template <int N>
   const WideBvh<N>& wide() const {
-    if constexpr (N == 8)
+    if constexpr (N == 16)
+      return bvh16;
+    else if constexpr (N == 8)
       return bvh8;
     else
       return bvh4;

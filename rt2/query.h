@@ -24,7 +24,7 @@ namespace rt2::RT2_ISA {
 
 // The BVH width of this instruction set (the enumerators are named as the namespaces).
 inline constexpr int kWidth = bvh_width(Isa::RT2_ISA);
-// The 8-wide kernels push children in octant order (wide_traverse.h); a build that lost
+// The 8- and 16-wide kernels push children in octant order (wide_traverse.h); a build that lost
 // mlib's compress_in_order would fall back to sorting without a word.
 static_assert(kWidth == 4 || kPushInOctantOrder<kWidth>, "mlib::compress_in_order is missing");
 

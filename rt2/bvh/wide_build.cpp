@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <type_traits>
 
 #include "rt2/bvh/wide_bvh.h"
 
@@ -68,7 +69,8 @@ class Collapser {
   // opposite one). A node of two children keeps the identity order: the walk orders two
   // children by their distances (wide_traverse.h).
   static void set_octant_orders(WideNode<N>& w, int n) {
-    for (int j = 0; j < N; ++j) w.octant_order[j] = std::uint32_t(j) * 0x249249u;  // j in each field
+    for (int j = 0; j < N; ++j)  // j in each field
+      w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
     if (n <= 2) return;
     for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
     float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
@@ -89,7 +91,8 @@ class Collapser {
       }
       for (int j = 0; j < N; ++j) {
         const std::uint32_t backward = j < n ? slot_at[n - 1 - j] : slot_at[j];
-        w.octant_order[j] |= slot_at[j] << (3 * o) | backward << (3 * (7 - o));
+        w.octant_order[j] |=
+            slot_at[j] << (kOrderBits<N> * o) | backward << (kOrderBits<N> * (7 - o));
       }
     }
   }
@@ -104,55 +107,88 @@ class Collapser {
   // 6-16 % with the watertight one on the four bench-peer meshes (bench_trace, old and new
   // alternated). Costs summed in float may pick, where two plans nearly tie, one a few ulps
   // of the cost above the least.
-  // A subtree's costs live only while its parent is planned (the walk is depth first), so
-  // what stays is the choice: choice_[m][k] for binary subtree m held in at most k slots of
-  // a wide node, the slots the least cost takes (bits 0-3) and the slots its first child's
-  // subtree takes (bits 4-7; 0: m itself in one slot, a wide node of its own). 10 bytes
-  // per binary node (N = 8; a table of the costs too took 55: the plan of a 1.4M-triangle
-  // mesh, 775k binary nodes, touched 43 MB of fresh memory rather than 8).
+  // A subtree's costs live only while its parent is planned (the walk is depth first), so what
+  // stays is the choice: choice_[m][k] for binary subtree m held in at most k slots of a wide
+  // node, the slots the least cost takes (the low kUsedBits) and the slots its first child's
+  // subtree takes (the bits above; 0: m itself in one slot, a wide node of its own). 10 bytes
+  // per binary node (N = 8; a table of the costs too took 55: the plan of a 1.4M-triangle mesh,
+  // 775k binary nodes, touched 43 MB of fresh memory rather than 8).
   void plan() {
     choice_.assign(bvh_.nodes.size(), {});
     wide_split_.assign(bvh_.nodes.size(), 0);
     plan(0);
   }
 
-  // cost[k]: the least cost of binary subtree m held in at most k slots (k = 1 ... N).
+  // One choice: the slots used (up to N) below kUsedBits, the first child's above.
+  static constexpr int kUsedBits = N <= 8 ? 4 : 5;
+  using Choice = std::conditional_t<N <= 8, std::uint8_t, std::uint16_t>;
+
+  // cost[k]: the least cost of binary subtree m held in at most k slots (k = 1 ... N);
+  // leaves: the subtree's leaves, at most N. A subtree of L leaves fills at most L slots, so
+  // cost[k] = cost[L] for k > L, and the search below skips the splits that would give a
+  // child more slots than it has leaves: their sums are no less than the split's at the
+  // bound (the costs do not increase with k), and where one ties, the smallest split is
+  // taken as the full search would take it, so the tree is the same (nodes, leaves and SAH
+  // statistics of the four bench-peer meshes unchanged for N = 4, 8, 16). With N = 16 the
+  // full search of 120 splits per binary node made the build 10-12 % slower on the bunny and
+  // the elephant (bench_trace, four rounds alternated); this one is as fast as N = 8's.
   using Costs = std::array<float, N + 1>;
-  Costs plan(std::uint32_t m) {
+  struct Plan {
+    Costs cost;
+    int leaves;
+  };
+  Plan plan(std::uint32_t m) {
     const BvhNode& node = bvh_.nodes[m];
-    Costs cost{};
+    Plan p{{}, 1};
+    Costs& cost = p.cost;
     if (node.is_leaf()) {
       for (int k = 1; k <= N; ++k) choice_[m][k] = 1;
-      return cost;
+      return p;
     }
-    const Costs l = plan(m + 1), r = plan(node.offset);
+    const Plan left = plan(m + 1), right = plan(node.offset);
+    const Costs &l = left.cost, &r = right.cost;
+    p.leaves = std::min(N, left.leaves + right.leaves);
+    // The least cost of k slots split between the children, and the first child's share.
+    const auto split = [&](int k, int lo, int hi, std::uint8_t& arg) {
+      float d = std::numeric_limits<float>::infinity();
+      arg = std::uint8_t(lo);
+      for (int a = lo; a <= hi; ++a) {
+        const float c = l[a] + r[k - a];
+        if (c < d) d = c, arg = std::uint8_t(a);
+      }
+      return d;
+    };
     float d[N + 1];
     std::uint8_t arg[N + 1];
-    for (int k = 2; k <= N; ++k) {
-      d[k] = std::numeric_limits<float>::infinity();
-      arg[k] = 1;
-      for (int a = 1; a < k; ++a) {
-        const float c = l[a] + r[k - a];
-        if (c < d[k]) d[k] = c, arg[k] = std::uint8_t(a);
-      }
+    for (int k = 2; k <= p.leaves; ++k) {
+      const int lo = std::max(1, k - right.leaves), hi = std::min(k - 1, left.leaves);
+      d[k] = split(k, lo, hi, arg[k]);
+      // Below lo the right child's cost is flat and the sums do not fall: a tie reaches down.
+      if (arg[k] == lo)
+        while (arg[k] > 1 && l[arg[k] - 1] + r[k - arg[k] + 1] == d[k]) --arg[k];
+    }
+    if (p.leaves < N) {  // the split of a wide node made here: the first that costs d[leaves]
+      // (each child at its floor; a below left.leaves is where the right child's is flat)
+      arg[N] = 1;
+      while (l[arg[N]] + r[N - arg[N]] != d[p.leaves]) ++arg[N];
     }
     wide_split_[m] = arg[N];
-    cost[1] = area(node) + d[N];
+    cost[1] = area(node) + (p.leaves < N ? d[p.leaves] : d[N]);
     choice_[m][1] = 1;
     for (int k = 2; k <= N; ++k) {
-      if (d[k] < cost[k - 1]) {
-        cost[k] = d[k], choice_[m][k] = std::uint8_t(k | arg[k] << 4);
+      if (k <= p.leaves && d[k] < cost[k - 1]) {
+        cost[k] = d[k], choice_[m][k] = Choice(k | arg[k] << kUsedBits);
       } else {
         cost[k] = cost[k - 1], choice_[m][k] = choice_[m][k - 1];
       }
     }
-    return cost;
+    return p;
   }
 
   // Appends to kids the slots binary subtree m takes when given at most k.
   void expand(std::uint32_t m, int k, std::uint32_t* kids, int& n) const {
     const BvhNode& node = bvh_.nodes[m];
-    const int used = choice_[m][k] & 15, a = choice_[m][k] >> 4;
+    const int used = choice_[m][k] & ((1 << kUsedBits) - 1), a = choice_[m][k] >> kUsedBits;
     if (node.is_leaf() || a == 0) {
       kids[n++] = m;
       return;
@@ -200,7 +236,7 @@ class Collapser {
     return kLeaf | first;
   }
 
-  mlib::HugePageVector<std::array<std::uint8_t, N + 1>> choice_;
+  mlib::HugePageVector<std::array<Choice, N + 1>> choice_;
   mlib::HugePageVector<std::uint8_t> wide_split_;
   const Bvh& bvh_;
   const std::span<const Triangle> tris_;
@@ -232,5 +268,7 @@ template WideBvh<4> collapse_bvh<4>(const Bvh&, std::span<const Triangle>,
                                     TriangleBlocks&);
 template WideBvh<8> collapse_bvh<8>(const Bvh&, std::span<const Triangle>,
                                     TriangleBlocks&);
+template WideBvh<16> collapse_bvh<16>(const Bvh&, std::span<const Triangle>,
+                                      TriangleBlocks&);
 
 }  // namespace rt2

@@ -1,6 +1,7 @@
-// rt2/bvh/wide_bvh.h — the wide BVH rt2 traces: nodes of N = 4 or 8 children whose boxes are
-// stored as structure of arrays, so one SIMD pass tests a ray against all of them (Wald et
-// al. 2008, "Getting Rid of Packets"; Embree's BVH4/BVH8), with leaves of triangle blocks.
+// rt2/bvh/wide_bvh.h — the wide BVH rt2 traces: nodes of N = 4, 8 or 16 children whose boxes
+// are stored as structure of arrays, so one SIMD pass tests a ray against all of them (Wald
+// et al. 2008, "Getting Rid of Packets"; Embree's BVH4/BVH8; 16 children for AVX-512 as in
+// Fuetterling et al. 2017), with leaves of triangle blocks.
 //
 // It is converted from the binary SAH tree (bvh/build.h) by collapsing: each wide node
 // holds a cut of its binary node's subtree into at most N slots, chosen by dynamic
@@ -30,25 +31,32 @@ inline constexpr std::uint32_t kLeaf = 0x80000000u;
 inline constexpr std::uint32_t kNoChild = 0xffffffffu;  // an empty tree's root
 
 // N = 4: 96 bytes of bounds + 16 of children + 16 of orders = 128 (two cache lines).
-// N = 8: 192 + 32 + 32 = 256 (four lines). An unused slot has the empty box lo = +inf,
-// hi = -inf, which no ray enters (not even one with a zero direction component: the slab
-// distances are infinite, never NaN).
+// N = 8: 192 + 32 + 32 = 256 (four lines). N = 16: 384 + 64 + 64 = 512 (eight lines).
+// An unused slot has the empty box lo = +inf, hi = -inf, which no ray enters (not even one
+// with a zero direction component: the slab distances are infinite, never NaN).
 template <int N>
 struct alignas(64) WideNode {
   // Rows: lo x, hi x, lo y, hi y, lo z, hi z; row 2a + 1 is the high side of axis a, so a
   // ray picks its near row per axis as 2a + (direction < 0) and its far row as near ^ 1.
   float bounds[6][N];
   std::uint32_t child[N];
-  // The children along each direction octant's diagonal: bits [3o, 3o + 3) of
-  // octant_order[j] name the slot at position j for octant o, the children sorted by their
-  // boxes' centres along the diagonal, farthest first, then the unused slots. Octant o has
-  // bit a set when the direction's component a is negative (as the near rows above). The
-  // 8-wide walks push the children a ray enters in this order, so that the nearest ends on
-  // top, without sorting them by distance (Fuetterling et al. 2017, "Accelerated Single Ray
-  // Tracing for Wide Vector Units"); the 4-wide walk sorts, and leaves it unread.
+  // The children along each direction octant's diagonal: bits [b o, b o + b) of
+  // octant_order[j], b = kOrderBits<N>, name the slot at position j for octant o, the children
+  // sorted by their boxes' centres along the diagonal, farthest first, then the unused slots.
+  // Octant o has bit a set when the direction's component a is negative (as the near rows
+  // above). The 8- and 16-wide walks push the children a ray enters in this order, so that the
+  // nearest ends on top, without sorting them by distance (Fuetterling et al. 2017,
+  // "Accelerated Single Ray Tracing for Wide Vector Units"); the 4-wide walk sorts, and leaves
+  // it unread.
   std::uint32_t octant_order[N];
 };
-static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256);
+static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256 &&
+              sizeof(WideNode<16>) == 512);
+
+// Bits per octant in WideNode::octant_order: enough for a slot index (8 octants x 4 bits
+// fill the 32 of a 16-wide node's orders).
+template <int N>
+inline constexpr int kOrderBits = N <= 8 ? 3 : 4;
 
 template <int N>
 struct WideBvh {

@@ -61,5 +61,6 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks) {
 
 template WideSah wide_sah<4>(const WideBvh<4>&, const TriangleBlock*);
 template WideSah wide_sah<8>(const WideBvh<8>&, const TriangleBlock*);
+template WideSah wide_sah<16>(const WideBvh<16>&, const TriangleBlock*);
 
 }  // namespace rt2

@@ -4,22 +4,22 @@
 // A node is tested in one SIMD pass over its N child boxes (the slab test, Kay and Kajiya
 // 1986). The ray picks, once, its near and far box rows per axis from the signs of its
 // direction (Embree's TravRay), so a box test is a subtract and a multiply per plane (one
-// FMA in the 8-wide kernels, NodeRay) and no min/max between the planes of an axis.
+// FMA in the 8- and 16-wide kernels, NodeRay) and no min/max between the planes of an axis.
 // Robustness as in aabb.h (Ize 2013): the far distance is scaled by 1 + 2 gamma(3) so that
 // rounding never culls a box the ray touches, and the NaN a ray in a slab's plane produces
 // (0 * inf) is replaced by the neighbouring bound, because maxps / minps return their
 // second operand for NaN: such a ray counts as inside the slab.
 //
-// Closest hit: of two children a ray enters, the nearer is visited first; three or more
-// are pushed in the node's order for the ray's octant (WideNode::octant_order: roughly
-// nearest first, without sorting, one compress_in_order in the 8-wide kernels; the 4-wide
-// kernel sorts them by distance), the top one visited. The others wait on a stack with
-// their entry distance and are dropped when a closer hit is found. In the 8-wide tree, two
+// Closest hit: of two children a ray enters, the nearer is visited first; three or more are
+// pushed in the node's order for the ray's octant (WideNode::octant_order: roughly nearest
+// first, without sorting, one compress_in_order in the 8- and 16-wide kernels; the 4-wide
+// kernel sorts them by distance), the top one visited. The others wait on a stack with their
+// entry distance and are dropped when a closer hit is found. In the 8- and 16-wide trees, two
 // children hit that are both leaves are not ordered: their first blocks are tested together,
 // one in each half of an 8-wide pass (the bottom of the tree has many such nodes; on
-// bench_trace's dragon incoherent rays 4 % and reflections 8 % faster). Ties between
-// triangles at the same t go to the smaller triangle index, so the hit does not depend on
-// the order of the walk: BVH4 and BVH8 (and every ISA) give the same hit, bit for bit.
+// bench_trace's dragon incoherent rays 4 % and reflections 8 % faster). Ties between triangles
+// at the same t go to the smaller triangle index, so the hit does not depend on the order of
+// the walk: BVH4, BVH8 and BVH16 (every ISA) give the same hit, bit for bit.
 // Any hit: no sorting; three or more children are pushed in the opposite octant's order
 // (farthest on top); the walk stops as soon as `on_hit` says so.
 //
@@ -40,8 +40,8 @@
 
 namespace rt2::RT2_ISA {
 
-// Whether the node test of N lanes takes its fused form (mlib's fmadd: the AVX2 and AVX-512
-// kernels' vfloat8).
+// Whether the node test of N lanes takes its fused form (mlib's fmadd: the AVX2 kernels'
+// vfloat8, the AVX-512 kernels' vfloat16).
 template <int N>
 inline constexpr bool kFusedNodeTest =
     requires(mlib::vfloat<N> a) { fmadd(a, a, a); };  // found through a (mlib)
@@ -83,7 +83,8 @@ struct NodeRay {
   V org[3], inv_near[3], inv_far[3];
   V c_near[3], c_far[3];  // the fused form's offsets
   int near[3], far[3];  // box rows (WideNode::bounds)
-  int order_shift = 0;  // 3 x the ray's octant: where WideNode::octant_order keeps its order
+  int order_shift = 0;  // kOrderBits<N> x the ray's octant: where WideNode::octant_order
+                        // keeps its order
 
   explicit NodeRay(const Ray& r, const RayPre& pre) {
     for (int a = 0; a < 3; ++a) {
@@ -101,7 +102,7 @@ struct NodeRay {
       // 1/dir is +-inf for a zero component, with the zero's sign: the sign bit decides.
       near[a] = 2 * a + (std::signbit(pre.inv_dir[a]) ? 1 : 0);
       far[a] = near[a] ^ 1;
-      order_shift += 3 * ((near[a] & 1) << a);
+      order_shift += kOrderBits<N> * ((near[a] & 1) << a);
     }
   }
 
@@ -155,8 +156,9 @@ template <int N>
 inline constexpr int kStackSize = (N - 1) * (kMaxBvhDepth + 1) + 1;
 
 // Whether the walks push three or more children in an octant order with
-// mlib::compress_in_order (vfloat8: the AVX2 and AVX-512 kernels): the closest-hit walk
-// rather than sorting them, the any-hit walk rather than pushing them one by one.
+// mlib::compress_in_order (vfloat8 and vfloat16: the AVX2 and AVX-512 kernels): the
+// closest-hit walk rather than sorting them, the any-hit walk rather than pushing them one
+// by one.
 template <int N>
 inline constexpr bool kPushInOctantOrder =
     requires(mlib::vfloat<N> t, const std::uint32_t* p, std::uint32_t* q, float* f) {
@@ -270,12 +272,14 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
                                        // without a branch (a mispredicted one costs more
                                        // than the whole node test)
         const StackEntry a{node.child[i], entry_t[i]}, b{node.child[i1], entry_t[i1]};
-        if constexpr (N == 8) {
+        if constexpr (N >= 8) {
           if (a.ref & b.ref & kLeaf) {  // two leaves: their first blocks in one 8-wide pass
+            using Pair = mlib::vfloat<(N < 8 ? N : 8)>;
             const TriangleBlock* ba = blocks + (a.ref & ~kLeaf);
             const TriangleBlock* bb = blocks + (b.ref & ~kLeaf);
             local.blocks(2);
-            const NearestHit n = test.nearest_pair(*ba, *bb, t_min_v, V::broadcast(h.t));
+            const NearestHit n = test.nearest_pair(*ba, *bb, Pair::broadcast(t_min),
+                                                   Pair::broadcast(h.t));
             if (n.lane >= 0) take(n.lane < 4 ? *ba : *bb, n, n.lane & 3);
             // A leaf of more blocks: the rest of it, as a leaf of its own, later.
             if (!ba->last()) stack_ref[sp] = a.ref + 1, stack_t[sp++] = a.t;
@@ -388,7 +392,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
                                   // of the four bench_trace meshes, 1-3 % slower on two)
           alignas(64) float unused_t[N];
           sp += std::size_t(compress_in_order(entry, node.child, node.octant_order,
-                                              3 * 7 - nr.order_shift, mask, unused_t,
+                                              kOrderBits<N> * 7 - nr.order_shift, mask, unused_t,
                                               stack + sp) - 1);
           ref = stack[sp];
           prefetch_ref(nodes, blocks, ref);

@@ -87,7 +87,7 @@ struct TriangleLanes {
 };
 
 // Two blocks in the eight lanes of V = vfloat8: a's triangles in lanes 0 ... 3, b's in
-// 4 ... 7 (the leaf pairs of the 8-wide walks, wide_traverse.h). Read as TriangleLanes.
+// 4 ... 7 (the leaf pairs of the 8- and 16-wide walks, wide_traverse.h). Read as TriangleLanes.
 template <class V>
 struct BlockPairLanes {
   const TriangleBlock& a;

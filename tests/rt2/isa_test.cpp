@@ -31,6 +31,7 @@ TEST(Isa, TheBestIsTheWidestTheCpuRunsAndNamesRoundTrip) {
   EXPECT_THROW(parse_isa(""), Error);
   EXPECT_EQ(bvh_width(Isa::sse41), 4);
   EXPECT_EQ(bvh_width(Isa::avx2), 8);
+  EXPECT_EQ(bvh_width(Isa::avx512), 16);
 }
 
 // Every function of the rt2cpr program whose disassembly uses an AVX instruction (a VEX or

@@ -126,6 +126,7 @@ TEST(Trace, AccelBytesCountsTheTreesAndLeafBlocks) {
   const Fixture f;
   const std::size_t read = f.acc.bvh4.nodes.size() * sizeof(WideNode<4>) +
                            f.acc.bvh8.nodes.size() * sizeof(WideNode<8>) +
+                           f.acc.bvh16.nodes.size() * sizeof(WideNode<16>) +
                            f.acc.blocks.size() * sizeof(TriangleBlock) +
                            f.acc.sphere_bvh.nodes.size() * sizeof(BvhNode);
   EXPECT_GE(accel_bytes(f.acc), read);
