@@ -60,7 +60,7 @@ bool isa_supported(Isa isa) {
              __builtin_cpu_supports("bmi2");
     case Isa::avx512:
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd") &&
              __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi2");
   }
   return false;

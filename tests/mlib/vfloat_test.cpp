@@ -34,9 +34,9 @@ TEST(Vfloat, CompressInOrderEqualsThePlainLoopForEveryMaskAndOctantWithAvx2AndAv
   if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
   char first[kFirstFailureSize];
   EXPECT_EQ(check_compress_in_order_avx2(first), 0) << "AVX2: " << first;
-  // vfloat16_checks.cpp is built with AVX-512 F, VL, DQ and BW
+  // vfloat16_checks.cpp is built with AVX-512 F, VL, DQ and CD
   if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512vl") ||
-      !__builtin_cpu_supports("avx512dq") || !__builtin_cpu_supports("avx512bw"))
+      !__builtin_cpu_supports("avx512dq") || !__builtin_cpu_supports("avx512cd"))
     return;
   EXPECT_EQ(check_compress_in_order_avx512(first), 0) << "AVX-512: " << first;
 }
