@@ -66,16 +66,11 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
       acc.tri_normals.push_back({m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]});
     }
   }
-  if (bvh_width(acc.isa) == 16) {
-    acc.bvh16 = collapse_bvh<16>(bvh, acc.tris, acc.blocks);
-    acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh16.nodes.size());
-  } else if (bvh_width(acc.isa) == 8) {
-    acc.bvh8 = collapse_bvh<8>(bvh, acc.tris, acc.blocks);
-    acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh8.nodes.size());
-  } else {
-    acc.bvh4 = collapse_bvh<4>(bvh, acc.tris, acc.blocks);
-    acc.wide_nodes = static_cast<std::uint32_t>(acc.bvh4.nodes.size());
-  }
+  with_bvh_width(acc.isa, [&](auto width) {
+    constexpr int N = decltype(width)::value;
+    acc.wide<N>() = collapse_bvh<N>(bvh, acc.tris, acc.blocks);
+    acc.wide_nodes = static_cast<std::uint32_t>(acc.wide<N>().nodes.size());
+  });
 }
 
 void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
@@ -116,11 +111,9 @@ std::size_t Accel::bvh_bytes() const {
 }
 
 WideSah Accel::tree_sah() const {
-  switch (bvh_width(isa)) {
-    case 16: return wide_sah(bvh16, blocks.data());
-    case 8: return wide_sah(bvh8, blocks.data());
-    default: return wide_sah(bvh4, blocks.data());
-  }
+  return with_bvh_width(isa, [&](auto width) {
+    return wide_sah(wide<decltype(width)::value>(), blocks.data());
+  });
 }
 
 }  // namespace rt2

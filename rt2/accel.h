@@ -67,6 +67,10 @@ struct Accel {
     else
       return bvh4;
   }
+  template <int N>
+  WideBvh<N>& wide() {
+    return const_cast<WideBvh<N>&>(static_cast<const Accel&>(*this).wide<N>());
+  }
 
   // Bytes of the acceleration structure: tree nodes and leaf blocks (what a ray walks), not
   // the shading data (tris, materials, normals).

@@ -92,16 +92,6 @@ bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
   return true;
 }
 
-// triangle_boxes over the tree of the width that accel's ISA traces.
-bool triangle_boxes(const Accel& accel, const Aabb& region, std::size_t limit,
-                    std::vector<ClusterVisibility::Occluder>& out) {
-  switch (bvh_width(accel.isa)) {
-    case 16: return triangle_boxes<16>(accel, region, limit, out);
-    case 8: return triangle_boxes<8>(accel, region, limit, out);
-    default: return triangle_boxes<4>(accel, region, limit, out);
-  }
-}
-
 // Appends the spheres whose padded boxes meet `region`, walking the spheres' binary tree
 // (nodes padded as in triangle_boxes); false once more than `limit` are found.
 bool sphere_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
@@ -145,8 +135,10 @@ void ClusterVisibility::gather(const Accel& accel, const Aabb& cluster, const Aa
   planes_.clear();
   plane_margin_.clear();
   const Aabb region = padded(reach);
-  complete_ = !cluster.is_empty() &&
-              triangle_boxes(accel, region, kMaxOccluders, occluders_) &&
+  const auto triangles = [&](auto width) {  // the tree of the width accel's ISA traces
+    return triangle_boxes<decltype(width)::value>(accel, region, kMaxOccluders, occluders_);
+  };
+  complete_ = !cluster.is_empty() && with_bvh_width(accel.isa, triangles) &&
               sphere_boxes(accel, region, kMaxOccluders, occluders_);
   if (!complete_) return;
   // Planes: the cluster's 8 corners strictly on one side (with the margin), or no claim.

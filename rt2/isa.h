@@ -22,6 +22,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rt2 {
@@ -42,6 +43,16 @@ Isa parse_isa(const std::string& name);
 // Children per BVH node for `isa`: 4, 8 or 16 (one SIMD register of child boxes).
 constexpr int bvh_width(Isa isa) {
   return isa == Isa::avx512 ? 16 : isa == Isa::avx2 ? 8 : 4;
+}
+// f(std::integral_constant<int, W>{}) for W = bvh_width(isa): code over the tree of the width
+// `isa` traces, chosen once (Accel's trees, their statistics, cluster visibility).
+template <class F>
+decltype(auto) with_bvh_width(Isa isa, F&& f) {
+  switch (bvh_width(isa)) {
+    case 16: return f(std::integral_constant<int, 16>{});
+    case 8: return f(std::integral_constant<int, 8>{});
+    default: return f(std::integral_constant<int, 4>{});
+  }
 }
 
 }  // namespace rt2

@@ -290,22 +290,12 @@ void expect_wide_tree_is_well_formed(const Accel& acc, std::uint32_t max_leaf) {
   EXPECT_EQ(leaves, w.leaves);
 }
 
-// f(std::integral_constant<int, W>{}) for the BVH width W of `isa` (4, 8 or 16).
-template <class F>
-void with_width(Isa isa, F&& f) {
-  switch (bvh_width(isa)) {
-    case 16: f(std::integral_constant<int, 16>{}); break;
-    case 8: f(std::integral_constant<int, 8>{}); break;
-    default: f(std::integral_constant<int, 4>{});
-  }
-}
-
 TEST(Bvh, TheWideTreeHoldsEveryTriangleOnceInBlocksUnderItsParentsBox) {
   const Scene scene = test::geometry_scene({test::random_soup(3000, 0.2f, 13)});
   for (std::uint32_t leaf : {1u, 4u, 7u, 64u, 5000u})
     for (Isa isa : test::runnable_isas()) {
       const Accel acc = Accel::build(scene, BvhConfig{leaf, Split::sah, 16}, isa);
-      with_width(isa, [&](auto n) { expect_wide_tree_is_well_formed<n()>(acc, leaf); });
+      with_bvh_width(isa, [&](auto n) { expect_wide_tree_is_well_formed<n()>(acc, leaf); });
     }
 }
 
@@ -358,7 +348,7 @@ TEST(Bvh, OctantOrdersListEverySlotOnceChildrenFarthestFirstAlongTheDiagonal) {
   for (std::uint32_t leaf : {1u, 4u, 16u})
     for (Isa isa : test::runnable_isas()) {
       const Accel acc = Accel::build(scene, BvhConfig{leaf, Split::sah, 16}, isa);
-      with_width(isa, [&](auto n) { expect_octant_orders<n()>(acc); });
+      with_bvh_width(isa, [&](auto n) { expect_octant_orders<n()>(acc); });
     }
 }
 
