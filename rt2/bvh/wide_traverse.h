@@ -205,15 +205,25 @@ struct WalkCounts<false> {
   void add_to(TraversalCounts*) const {}
 };
 
-// The closest triangle hit by `ray` in (t_min, h.t): h, with t, u, v and prim = the
-// triangle's index replaced when one is found; ties at equal t go to the smaller index.
-// `test` is a FastTriangleTest or a WatertightTriangleTest built from `ray` (taken by
-// value instead, so that no pointer to it stays live, the walk ran 4-17 % slower).
+// The closest triangle hit by `ray` in (t_min, t_max), or at t_max itself when `prior` is
+// a hit there (a plane or a sphere, which a triangle at the same t beats): a Hit with t, u,
+// v and prim = the triangle's index when one is found, else t = t_max and prim = prior.
+// Ties at equal t go to the smaller index. `test` is a FastTriangleTest or a
+// WatertightTriangleTest built from `ray` (taken by value instead, so that no pointer to it
+// stays live, the walk ran 4-17 % slower). The earlier hit comes in as two scalars, not as
+// a Hit by value: GCC 12 assembled that argument on the stack from 4-byte stores and read it
+// back as two 8-byte halves for the registers, a load that no store can forward, once per
+// ray (1.4 % of the samples of bench_trace's fast primary rays on the bunny, on that one
+// load; in the timings, within their noise).
 template <int N, class Test, bool Finite, bool Count>
 inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                  const Ray& ray, const RayPre& pre, const Test& test,
-                                 float t_min, Hit h, TraversalCounts* counts) {
+                                 float t_min, float t_max, PrimRef prior,
+                                 TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
+  Hit h;
+  h.t = t_max;
+  h.prim = prior;
   const NodeRay<N, Finite> nr(ray, pre);
   const V t_min_v = V::broadcast(t_min);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
@@ -352,10 +362,11 @@ MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
                                   TraversalCounts* counts) {
   if (bvh.root == kNoChild) return;
   const RayPre pre(ray);
-  h = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
+  const Hit t = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
     return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
-        bvh, blocks, ray, pre, test, t_min, h, counts);
+        bvh, blocks, ray, pre, test, t_min, h.t, h.prim, counts);
   });
+  if (t.prim != h.prim) h = t;  // a triangle
 }
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
