@@ -97,6 +97,42 @@ TEST(Bvh, TiesAtEqualTGoToTheSmallerIndexWhateverTheLeavesAndSlotsOrder) {
   }
 }
 
+TEST(Bvh, TrianglesWinTiesWithAPlaneAtTheSameTAndThePlaneKeepsTheRaysTheyMiss) {
+  // Triangles in the plane z = 1 and the plane z = 1 itself, shot along +z: where a ray
+  // meets a triangle both are at t = 1 (to the rounding of each test), and the triangle
+  // must win a tie, as brute force decides; elsewhere the plane's hit must come back whole.
+  // The walk starts from the plane's hit (its t and primitive) and returns it when no
+  // triangle is nearer.
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Mesh m;
+  for (std::uint32_t i = 0; i < 200; ++i) {
+    const float cx = u(rng), cy = u(rng);
+    for (int k = 0; k < 3; ++k)
+      m.positions.push_back(vec4(cx + 0.2f * (u(rng) - 0.5f), cy + 0.2f * (u(rng) - 0.5f), 1.0f));
+    m.faces.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+  }
+  m.face_materials.assign(m.faces.size(), 0);
+  m.drop_degenerate();
+  Scene scene = test::geometry_scene({m});
+  scene.planes.push_back(Plane{vec4(0, 0, 1), -1.0f});
+  scene.plane_materials.push_back(0);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 20000 / kSampleScale; ++i)
+    rays.push_back(Ray(vec4(1.4f * u(rng) - 0.2f, 1.4f * u(rng) - 0.2f, 0.0f), vec4(0, 0, 1)));
+  EXPECT_EQ(expect_closest_equals_brute_force(scene, BvhConfig{4, Split::sah, 16}, rays),
+            rays.size());  // every ray meets the plane
+  const Accel acc = Accel::build(scene, BvhConfig{4, Split::sah, 16});
+  std::size_t on_plane = 0, on_triangle = 0;
+  for (const Ray& r : rays) {
+    const Hit h = trace_closest(acc, r, kInfinity, TraceOptions{false});
+    on_plane += h.prim == (kPlaneTag | 0u);
+    on_triangle += prim_tag(h.prim) == kTriangleTag;
+  }
+  EXPECT_GT(on_plane, rays.size() / 10);  // both outcomes are exercised
+  EXPECT_GT(on_triangle, rays.size() / 10);
+}
+
 TEST(Bvh, TwoLeavesOfSeveralBlocksTestedTogetherFindHitsInEveryBlock) {
   // Two stacks of twelve parallel triangles, far apart along x, each one leaf of three
   // blocks (max leaf size 16): a ray along the x axis enters both leaves and no other child,
