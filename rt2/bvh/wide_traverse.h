@@ -21,7 +21,10 @@
 // at the same t go to the smaller triangle index, so the hit does not depend on the order of
 // the walk: BVH4, BVH8 and BVH16 (every ISA) give the same hit, bit for bit.
 // Any hit: no sorting; three or more children are pushed in the opposite octant's order
-// (farthest on top); the walk stops as soon as `on_hit` says so.
+// (farthest on top); two that are both leaves have their first blocks tested together, as
+// in the closest-hit walk (bench_trace's shadow rays, old and new binaries alternated: -3 ...
+// +10 %, about +3.5 % over the four meshes and both tests); the walk stops as soon as
+// `on_hit` says so.
 //
 // Compiled per instruction set (rt2/isa.h): the code lives in rt2::RT2_ISA.
 #pragma once
@@ -380,7 +383,8 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
   const V t_min_v = V::broadcast(t_min), t_max_v = V::broadcast(t_max * kSlabPad);
   const vfloat4 t_min_4 = vfloat4::broadcast(t_min);
   // Inclusive upper bound of the block test, strictly below t_max.
-  const vfloat4 t_below_4 = vfloat4::broadcast(float_below(t_max));
+  const float t_below = float_below(t_max);
+  const vfloat4 t_below_4 = vfloat4::broadcast(t_below);
   WalkCounts<Count> local;
   alignas(64) std::uint32_t stack[kStackSize<N> + N - 1];  // slack: compress_in_order
   std::size_t sp = 0;
@@ -408,6 +412,31 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
           ref = stack[sp];
           prefetch_ref(nodes, blocks, ref);
           continue;
+        }
+      }
+      if constexpr (N >= 8) {
+        const unsigned rest = mask & (mask - 1);
+        const std::uint32_t a = node.child[std::countr_zero(mask)];
+        if (rest && !(rest & (rest - 1)) && (a & node.child[std::countr_zero(rest)] & kLeaf)) {
+          // Two leaves: their first blocks in one 8-wide pass, as the closest-hit walk does.
+          using Pair = mlib::vfloat<(N < 8 ? N : 8)>;
+          const std::uint32_t b = node.child[std::countr_zero(rest)];
+          const TriangleBlock* ba = blocks + (a & ~kLeaf);
+          const TriangleBlock* bb = blocks + (b & ~kLeaf);
+          local.blocks(2);
+          const PairHits ph =
+              test.pair_hits(*ba, *bb, Pair::broadcast(t_min), Pair::broadcast(t_below));
+          for (unsigned m = ph.mask; m; m &= m - 1) {
+            const int l = std::countr_zero(m);
+            if (on_hit((l < 4 ? ba : bb)->prim_of(l & 3), ph.t[l])) {
+              stopped = true;
+              goto done;
+            }
+          }
+          // A leaf of more blocks: the rest of it, as a leaf of its own, later.
+          if (!ba->last()) stack[sp++] = a + 1;
+          if (!bb->last()) stack[sp++] = b + 1;
+          goto pop;
         }
       }
       ref = node.child[std::countr_zero(mask)];

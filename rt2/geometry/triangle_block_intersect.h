@@ -33,6 +33,13 @@ struct BlockHits {
   alignas(16) float t[4], u[4], v[4];
 };
 
+// Lane hits of two blocks tested together (BlockPairLanes): bit i of `mask` set when lane i
+// is hit, the first block's triangles in lanes 0 ... 3 and the second's in 4 ... 7.
+struct PairHits {
+  unsigned mask = 0;
+  alignas(32) float t[8];
+};
+
 // The nearest lane hit in a block (ties: the lowest lane, which holds the smallest index).
 struct NearestHit {
   int lane = -1;
@@ -215,18 +222,37 @@ struct FastTriangleTest {
     return nearest_lane(hit, t, u, v, [&b](int l) { return b.prim_of(l); });
   }
 
-  // The nearest lane hit of blocks a and b at once, a's triangles in lanes 0 ... 3 and b's
-  // in 4 ... 7 (V = vfloat8), with t in (t_min, t_max].
+  // The lanes of blocks a and b hit with t in (t_min, t_max], a's triangles in lanes
+  // 0 ... 3 and b's in 4 ... 7 (V = vfloat8), and their t, u, v (unset when none is hit).
   template <class V>
-  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
-                                      V t_max) const {
+  MLIB_INLINE typename V::bool_type pair(const TriangleBlock& a, const TriangleBlock& b,
+                                         V t_min, V t_max, V& t, V& u, V& v) const {
     V o[3], d[3];
     for (int k = 0; k < 3; ++k) o[k] = both_halves<V>(org[k]), d[k] = both_halves<V>(dir[k]);
     const FastTerms<V> terms(BlockPairLanes<V>{a, b}, o, d);
-    if (!terms.may_hit(t_min, t_max)) return {};
+    if (!terms.may_hit(t_min, t_max)) return V::bool_type::from_bits(0);
+    return terms.exact(t_min, t_max, t, u, v);
+  }
+
+  // The nearest lane hit of blocks a and b at once (see pair).
+  template <class V>
+  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                      V t_max) const {
     V t, u, v;
-    const auto hit = terms.exact(t_min, t_max, t, u, v);
+    const auto hit = pair(a, b, t_min, t_max, t, u, v);
+    if (!mlib::bits(hit)) return {};
     return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
+  }
+
+  // Every lane of blocks a and b hit at once (see pair).
+  template <class V>
+  MLIB_INLINE PairHits pair_hits(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                 V t_max) const {
+    PairHits h;
+    V t, u, v;
+    h.mask = mlib::bits(pair(a, b, t_min, t_max, t, u, v));
+    if (h.mask) t.store(h.t);
+    return h;
   }
 };
 
@@ -327,18 +353,36 @@ struct WatertightTriangleTest {
     return nearest_lane(hit, t, u, v, [&b](int l) { return b.prim_of(l); });
   }
 
+  // The lanes of blocks a and b hit (see FastTriangleTest::pair).
+  template <class V>
+  MLIB_INLINE typename V::bool_type pair(const TriangleBlock& a, const TriangleBlock& b,
+                                         V t_min, V t_max, V& t, V& u, V& v) const {
+    V o[3];
+    for (int k = 0; k < 3; ++k) o[k] = both_halves<V>(org[k]);
+    return WatertightLanes<V>::test(BlockPairLanes<V>{a, b}, o, both_halves<V>(sx),
+                                    both_halves<V>(sy), both_halves<V>(sz), ray.kx, ray.ky,
+                                    ray.kz, t_min, t_max, t, u, v);
+  }
+
   // The nearest lane hit of blocks a and b at once (see FastTriangleTest::nearest_pair).
   template <class V>
   MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
                                       V t_max) const {
-    V o[3];
-    for (int k = 0; k < 3; ++k) o[k] = both_halves<V>(org[k]);
     V t, u, v;
-    const auto hit = WatertightLanes<V>::test(BlockPairLanes<V>{a, b}, o, both_halves<V>(sx),
-                                              both_halves<V>(sy), both_halves<V>(sz), ray.kx,
-                                              ray.ky, ray.kz, t_min, t_max, t, u, v);
+    const auto hit = pair(a, b, t_min, t_max, t, u, v);
     if (!mlib::bits(hit)) return {};
     return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
+  }
+
+  // Every lane of blocks a and b hit at once (see FastTriangleTest::pair_hits).
+  template <class V>
+  MLIB_INLINE PairHits pair_hits(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                 V t_max) const {
+    PairHits h;
+    V t, u, v;
+    h.mask = mlib::bits(pair(a, b, t_min, t_max, t, u, v));
+    if (h.mask) t.store(h.t);
+    return h;
   }
 
  private:

@@ -133,11 +133,68 @@ TEST(Bvh, TrianglesWinTiesWithAPlaneAtTheSameTAndThePlaneKeepsTheRaysTheyMiss) {
   EXPECT_GT(on_triangle, rays.size() / 10);
 }
 
+TEST(Bvh, AnyHitOfTwoLeavesTestedTogetherFindsTheOnlyTriangleInTheSegmentInAnyBlock) {
+  // Two leaves of three blocks each, far apart along x (max leaf size 16), each holding
+  // twelve small triangles in the cells of a 4 x 3 grid over the square 0 <= y, z < 1, one
+  // to a cell at shuffled depths, the near leaf's in the cells' lower halves and the far
+  // one's in the upper: a ray along x meets at most one triangle, in any block of either. The any-hit walks of the 8- and 16-wide trees test the two leaves' first
+  // blocks together and must still look at the rest of each leaf: occlusion must agree
+  // with the closest hit on segments long enough to reach both leaves.
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    Mesh m;
+    for (float x0 : {0.0f, 10.0f}) {
+      std::vector<int> cells(12);
+      std::iota(cells.begin(), cells.end(), 0);
+      std::shuffle(cells.begin(), cells.end(), rng);
+      for (int k = 0; k < 12; ++k) {
+        const float y = float(cells[k] % 4) / 4.0f, z = float(cells[k] / 4) / 3.0f;
+        const float x = x0 + 0.01f * float(k);
+        const auto first = static_cast<std::uint32_t>(m.positions.size());
+        const float h = 1.0f / 3.0f;
+        if (x0 == 0.0f)  // the near leaf covers the cells' lower halves, the far one the upper
+          m.positions.insert(m.positions.end(),
+                             {vec4(x, y, z), vec4(x, y + 0.25f, z), vec4(x, y, z + h)});
+        else
+          m.positions.insert(m.positions.end(), {vec4(x, y + 0.25f, z + h), vec4(x, y, z + h),
+                                                 vec4(x, y + 0.25f, z)});
+        m.faces.push_back({first, first + 1, first + 2});
+      }
+    }
+    m.face_materials.assign(m.faces.size(), 0);
+    const Scene scene = test::geometry_scene({m});
+    std::vector<Ray> rays;
+    std::vector<float> t_max;
+    for (int i = 0; i < 400; ++i) {
+      rays.push_back(Ray(vec4(-1.0f, u(rng), u(rng)), vec4(1, 0, 0)));
+      rays.push_back(Ray(vec4(11.0f, u(rng), u(rng)), vec4(-1, 0, 0)));
+      t_max.push_back(11.5f), t_max.push_back(11.5f);  // through both leaves
+    }
+    for (Isa isa : test::runnable_isas()) {
+      const Accel acc = Accel::build(scene, BvhConfig{16, Split::sah, 16}, isa);
+      for (bool watertight : {false, true}) {
+        std::vector<std::uint8_t> occluded(rays.size());
+        std::vector<Hit> hits(rays.size());
+        trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
+        trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
+        std::size_t disagree = 0, blocked = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          disagree += (occluded[i] != 0) != hits[i].found();
+          blocked += occluded[i];
+        }
+        EXPECT_EQ(disagree, 0u) << seed << ' ' << isa_name(isa);
+        EXPECT_GT(blocked, rays.size() * 9 / 10);  // the halves cover the square
+      }
+    }
+  }
+}
+
 TEST(Bvh, TwoLeavesOfSeveralBlocksTestedTogetherFindHitsInEveryBlock) {
   // Two stacks of twelve parallel triangles, far apart along x, each one leaf of three
   // blocks (max leaf size 16): a ray along the x axis enters both leaves and no other child,
-  // so the 8-wide walks test the two leaves' first blocks together and the rest of each
-  // leaf after. The stacks' triangles come in a shuffled order, so that the nearest one
+  // so the 8- and 16-wide walks test the two leaves' first blocks together and the rest of
+  // each leaf after. The stacks' triangles come in a shuffled order, so that the nearest one
   // lies in a later block for some seeds and rays.
   for (unsigned seed = 1; seed <= 8; ++seed) {
     Mesh m;
