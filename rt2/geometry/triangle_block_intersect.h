@@ -170,8 +170,36 @@ struct FastTerms {
   }
 };
 
+// The queries on two blocks at once (BlockPairLanes) that the 8- and 16-wide walks make,
+// for a test that defines pair(a, b, t_min, t_max, t, u, v): the lanes hit, with their t,
+// u, v (FastTriangleTest, WatertightTriangleTest).
+template <class Test>
+struct PairQueries {
+  // The nearest lane hit of blocks a and b, a's triangles in lanes 0 ... 3 and b's in
+  // 4 ... 7 (V = vfloat8), with t in (t_min, t_max].
+  template <class V>
+  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                      V t_max) const {
+    V t, u, v;
+    const auto hit = static_cast<const Test&>(*this).pair(a, b, t_min, t_max, t, u, v);
+    if (!mlib::bits(hit)) return {};
+    return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
+  }
+
+  // Every lane of blocks a and b hit with t in (t_min, t_max], and its t.
+  template <class V>
+  MLIB_INLINE PairHits pair_hits(const TriangleBlock& a, const TriangleBlock& b, V t_min,
+                                 V t_max) const {
+    PairHits h;
+    V t, u, v;
+    h.mask = mlib::bits(static_cast<const Test&>(*this).pair(a, b, t_min, t_max, t, u, v));
+    if (h.mask) t.store(h.t);
+    return h;
+  }
+};
+
 // The fast test of one ray against the four triangles of a block.
-struct FastTriangleTest {
+struct FastTriangleTest : PairQueries<FastTriangleTest> {
   vfloat4 org[3], dir[3];
 
   FastTriangleTest() = default;  // unset, to be assigned (an array of per-ray tests)
@@ -234,26 +262,6 @@ struct FastTriangleTest {
     return terms.exact(t_min, t_max, t, u, v);
   }
 
-  // The nearest lane hit of blocks a and b at once (see pair).
-  template <class V>
-  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
-                                      V t_max) const {
-    V t, u, v;
-    const auto hit = pair(a, b, t_min, t_max, t, u, v);
-    if (!mlib::bits(hit)) return {};
-    return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
-  }
-
-  // Every lane of blocks a and b hit at once (see pair).
-  template <class V>
-  MLIB_INLINE PairHits pair_hits(const TriangleBlock& a, const TriangleBlock& b, V t_min,
-                                 V t_max) const {
-    PairHits h;
-    V t, u, v;
-    h.mask = mlib::bits(pair(a, b, t_min, t_max, t, u, v));
-    if (h.mask) t.store(h.t);
-    return h;
-  }
 };
 
 // The watertight test of Woop, Benthin and Wald (JCGT 2013) for the lanes of V, each lane
@@ -324,7 +332,7 @@ struct WatertightLanes {
 };
 
 // The watertight test of one ray against the four triangles of a block.
-struct WatertightTriangleTest {
+struct WatertightTriangleTest : PairQueries<WatertightTriangleTest> {
   WatertightRay ray;
   vfloat4 org[3], sx, sy, sz;
 
@@ -362,27 +370,6 @@ struct WatertightTriangleTest {
     return WatertightLanes<V>::test(BlockPairLanes<V>{a, b}, o, both_halves<V>(sx),
                                     both_halves<V>(sy), both_halves<V>(sz), ray.kx, ray.ky,
                                     ray.kz, t_min, t_max, t, u, v);
-  }
-
-  // The nearest lane hit of blocks a and b at once (see FastTriangleTest::nearest_pair).
-  template <class V>
-  MLIB_INLINE NearestHit nearest_pair(const TriangleBlock& a, const TriangleBlock& b, V t_min,
-                                      V t_max) const {
-    V t, u, v;
-    const auto hit = pair(a, b, t_min, t_max, t, u, v);
-    if (!mlib::bits(hit)) return {};
-    return nearest_lane(hit, t, u, v, [&a, &b](int l) { return (l < 4 ? a : b).prim_of(l & 3); });
-  }
-
-  // Every lane of blocks a and b hit at once (see FastTriangleTest::pair_hits).
-  template <class V>
-  MLIB_INLINE PairHits pair_hits(const TriangleBlock& a, const TriangleBlock& b, V t_min,
-                                 V t_max) const {
-    PairHits h;
-    V t, u, v;
-    h.mask = mlib::bits(pair(a, b, t_min, t_max, t, u, v));
-    if (h.mask) t.store(h.t);
-    return h;
   }
 
  private:
