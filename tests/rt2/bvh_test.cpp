@@ -48,6 +48,25 @@ std::size_t expect_closest_equals_brute_force(const Scene& scene, const BvhConfi
   return hits;
 }
 
+// Any hit against closest hit on the segments (0, t_max[i]) of `rays`: the rays where
+// trace_occluded and trace_closest disagree about a hit, and the rays blocked.
+struct AnyVsClosest {
+  std::size_t disagree = 0, blocked = 0;
+};
+AnyVsClosest any_vs_closest(const Accel& acc, bool watertight, const std::vector<Ray>& rays,
+                            const std::vector<float>& t_max) {
+  std::vector<std::uint8_t> occluded(rays.size());
+  std::vector<Hit> hits(rays.size());
+  trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
+  trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
+  AnyVsClosest a;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    a.disagree += (occluded[i] != 0) != hits[i].found();
+    a.blocked += occluded[i];
+  }
+  return a;
+}
+
 class BvhVsBruteForce : public ::testing::TestWithParam<std::tuple<std::uint32_t, Split>> {};
 
 TEST_P(BvhVsBruteForce, ClosestHitEqualsBruteForceOnRandomSoup) {
@@ -71,6 +90,23 @@ INSTANTIATE_TEST_SUITE_P(LeafSizesAndSplits, BvhVsBruteForce,
                                             ::testing::Values(Split::midpoint, Split::sah)),
                          leaf_and_split_name);
 
+// n random triangles in the plane z = 1 about centres uniform in the unit square, each
+// vertex within size / 2 of its centre in x and y (degenerate ones dropped).
+Mesh triangles_at_z1(std::uint32_t n, float size, std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Mesh m;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const float cx = u(rng), cy = u(rng);
+    for (int k = 0; k < 3; ++k)
+      m.positions.push_back(
+          vec4(cx + size * (u(rng) - 0.5f), cy + size * (u(rng) - 0.5f), 1.0f));
+    m.faces.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+  }
+  m.face_materials.assign(m.faces.size(), 0);
+  m.drop_degenerate();
+  return m;
+}
+
 TEST(Bvh, TiesAtEqualTGoToTheSmallerIndexWhateverTheLeavesAndSlotsOrder) {
   // Overlapping triangles in the plane z = 1, shot exactly along +z: the fast test computes
   // t = N.z / N.z = 1 for every one of them, so nearly every ray hits several at the same t
@@ -78,16 +114,7 @@ TEST(Bvh, TiesAtEqualTGoToTheSmallerIndexWhateverTheLeavesAndSlotsOrder) {
   // 8-wide walks test two leaves at once, where the two blocks' indices are not ordered).
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  Mesh m;
-  for (std::uint32_t i = 0; i < 400; ++i) {
-    const float cx = u(rng), cy = u(rng);
-    for (int k = 0; k < 3; ++k)
-      m.positions.push_back(vec4(cx + 0.4f * (u(rng) - 0.5f), cy + 0.4f * (u(rng) - 0.5f), 1.0f));
-    m.faces.push_back({3 * i, 3 * i + 1, 3 * i + 2});
-  }
-  m.face_materials.assign(m.faces.size(), 0);
-  m.drop_degenerate();
-  const Scene scene = test::geometry_scene({m});
+  const Scene scene = test::geometry_scene({triangles_at_z1(400, 0.4f, rng)});
   std::vector<Ray> rays;
   for (int i = 0; i < 20000 / kSampleScale; ++i)
     rays.push_back(Ray(vec4(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.0f), vec4(0, 0, 1)));
@@ -105,16 +132,7 @@ TEST(Bvh, TrianglesWinTiesWithAPlaneAtTheSameTAndThePlaneKeepsTheRaysTheyMiss) {
   // triangle is nearer.
   std::mt19937 rng(29);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  Mesh m;
-  for (std::uint32_t i = 0; i < 200; ++i) {
-    const float cx = u(rng), cy = u(rng);
-    for (int k = 0; k < 3; ++k)
-      m.positions.push_back(vec4(cx + 0.2f * (u(rng) - 0.5f), cy + 0.2f * (u(rng) - 0.5f), 1.0f));
-    m.faces.push_back({3 * i, 3 * i + 1, 3 * i + 2});
-  }
-  m.face_materials.assign(m.faces.size(), 0);
-  m.drop_degenerate();
-  Scene scene = test::geometry_scene({m});
+  Scene scene = test::geometry_scene({triangles_at_z1(200, 0.2f, rng)});
   scene.planes.push_back(Plane{vec4(0, 0, 1), -1.0f});
   scene.plane_materials.push_back(0);
   std::vector<Ray> rays;
@@ -174,17 +192,9 @@ TEST(Bvh, AnyHitOfTwoLeavesTestedTogetherFindsTheOnlyTriangleInTheSegmentInAnyBl
     for (Isa isa : test::runnable_isas()) {
       const Accel acc = Accel::build(scene, BvhConfig{16, Split::sah, 16}, isa);
       for (bool watertight : {false, true}) {
-        std::vector<std::uint8_t> occluded(rays.size());
-        std::vector<Hit> hits(rays.size());
-        trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
-        trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
-        std::size_t disagree = 0, blocked = 0;
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-          disagree += (occluded[i] != 0) != hits[i].found();
-          blocked += occluded[i];
-        }
-        EXPECT_EQ(disagree, 0u) << seed << ' ' << isa_name(isa);
-        EXPECT_GT(blocked, rays.size() * 9 / 10);  // the halves cover the square
+        const AnyVsClosest a = any_vs_closest(acc, watertight, rays, t_max);
+        EXPECT_EQ(a.disagree, 0u) << seed << ' ' << isa_name(isa);
+        EXPECT_GT(a.blocked, rays.size() * 9 / 10);  // the halves cover the square
       }
     }
   }
@@ -243,17 +253,9 @@ TEST(Bvh, AnyHitAgreesWithClosestHitOnSegments) {
     std::vector<float> t_max(rays.size());
     for (float& t : t_max) t = len(rng);
     for (bool watertight : {false, true}) {
-      std::vector<std::uint8_t> occluded(rays.size());
-      std::vector<Hit> hits(rays.size());
-      trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
-      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), hits.data());
-      std::size_t blocked = 0, disagree = 0;
-      for (std::size_t i = 0; i < rays.size(); ++i) {
-        disagree += (occluded[i] != 0) != hits[i].found();
-        blocked += occluded[i];
-      }
-      EXPECT_EQ(disagree, 0u) << isa_name(isa);
-      EXPECT_GT(blocked, rays.size() / 10);
+      const AnyVsClosest a = any_vs_closest(acc, watertight, rays, t_max);
+      EXPECT_EQ(a.disagree, 0u) << isa_name(isa);
+      EXPECT_GT(a.blocked, rays.size() / 10);
     }
   }
 }
@@ -301,14 +303,8 @@ TEST(Bvh, RaysLeavingTrianglesThreeMillionUnitsOutFindBruteForcesHitsWithEveryNo
   for (Isa isa : test::runnable_isas()) {
     const Accel acc = Accel::build(scene, BvhConfig{}, isa);
     for (bool watertight : {false, true}) {
-      std::vector<std::uint8_t> occluded(rays.size());
-      std::vector<Hit> closest(rays.size());
-      trace_occluded(acc, {watertight}, rays.data(), t_max.data(), rays.size(), occluded.data());
-      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), closest.data());
-      std::size_t disagree = 0;
-      for (std::size_t i = 0; i < rays.size(); ++i)
-        disagree += (occluded[i] != 0) != closest[i].found();
-      EXPECT_EQ(disagree, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast");
+      EXPECT_EQ(any_vs_closest(acc, watertight, rays, t_max).disagree, 0u)
+          << isa_name(isa) << (watertight ? " watertight" : " fast");
     }
   }
 }
