@@ -55,6 +55,24 @@ inline void* allocate_huge(std::size_t bytes) {
   return p;
 }
 
+// `bytes` (> 0) aligned to `align`, below one huge page: from tbbmalloc, or from operator new
+// in a sanitized build (see above). Freed with free_small(p, align).
+#if defined(__SANITIZE_ADDRESS__)
+inline void* allocate_small(std::size_t bytes, std::size_t align) {
+  return ::operator new(bytes, std::align_val_t{align});
+}
+inline void free_small(void* p, std::size_t align) noexcept {
+  ::operator delete(p, std::align_val_t{align});
+}
+#else
+inline void* allocate_small(std::size_t bytes, std::size_t align) {
+  void* p = scalable_aligned_malloc(bytes, align);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+inline void free_small(void* p, std::size_t) noexcept { scalable_aligned_free(p); }
+#endif
+
 template <class T>
 struct HugePageAllocator {
   using value_type = T;
@@ -67,23 +85,13 @@ struct HugePageAllocator {
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
     if (wants_huge_pages(bytes)) return static_cast<T*>(allocate_huge(bytes));
-#if defined(__SANITIZE_ADDRESS__)
-    return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));
-#else
-    void* p = scalable_aligned_malloc(bytes, alignof(T));
-    if (!p) throw std::bad_alloc();
-    return static_cast<T*>(p);
-#endif
+    return static_cast<T*>(allocate_small(bytes, alignof(T)));
   }
   void deallocate(T* p, std::size_t n) noexcept {
     if (wants_huge_pages(n * sizeof(T)))
       std::free(p);
     else
-#if defined(__SANITIZE_ADDRESS__)
-      ::operator delete(p, std::align_val_t{alignof(T)});
-#else
-      scalable_aligned_free(p);
-#endif
+      free_small(p, alignof(T));
   }
 
   template <class U>
