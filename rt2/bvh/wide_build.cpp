@@ -173,7 +173,7 @@ class Collapser {
       while (l[arg[N]] + r[N - arg[N]] != d[p.leaves]) ++arg[N];
     }
     wide_split_[m] = arg[N];
-    cost[1] = area(node) + (p.leaves < N ? d[p.leaves] : d[N]);
+    cost[1] = area(node) + d[p.leaves];  // the least cost of a wide node of its own
     choice_[m][1] = 1;
     for (int k = 2; k <= N; ++k) {
       if (k <= p.leaves && d[k] < cost[k - 1]) {

@@ -168,6 +168,11 @@ inline constexpr bool kPushInOctantOrder =
       compress_in_order(t, p, p, 0, 0u, f, q);  // found through t (mlib)
     };
 
+// The eight lanes in which the 8- and 16-wide walks test two leaves' first blocks at once.
+// Spelled with N so that the 4-wide kernels, built without a vfloat8, never name it.
+template <int N>
+using PairLanes = mlib::vfloat<(N < 8 ? N : 8)>;
+
 // Lines of a node, and of a leaf block, fetched together when the walk decides to go there:
 // the first one would stall anyway, the others then arrive during that wait.
 template <int N>
@@ -287,12 +292,11 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
         const StackEntry a{node.child[i], entry_t[i]}, b{node.child[i1], entry_t[i1]};
         if constexpr (N >= 8) {
           if (a.ref & b.ref & kLeaf) {  // two leaves: their first blocks in one 8-wide pass
-            using Pair = mlib::vfloat<(N < 8 ? N : 8)>;
             const TriangleBlock* ba = blocks + (a.ref & ~kLeaf);
             const TriangleBlock* bb = blocks + (b.ref & ~kLeaf);
             local.blocks(2);
-            const NearestHit n = test.nearest_pair(*ba, *bb, Pair::broadcast(t_min),
-                                                   Pair::broadcast(h.t));
+            const NearestHit n = test.nearest_pair(*ba, *bb, PairLanes<N>::broadcast(t_min),
+                                                   PairLanes<N>::broadcast(h.t));
             if (n.lane >= 0) take(n.lane < 4 ? *ba : *bb, n, n.lane & 3);
             // A leaf of more blocks: the rest of it, as a leaf of its own, later.
             if (!ba->last()) stack_ref[sp] = a.ref + 1, stack_t[sp++] = a.t;
@@ -419,13 +423,13 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
         const std::uint32_t a = node.child[std::countr_zero(mask)];
         if (rest && !(rest & (rest - 1)) && (a & node.child[std::countr_zero(rest)] & kLeaf)) {
           // Two leaves: their first blocks in one 8-wide pass, as the closest-hit walk does.
-          using Pair = mlib::vfloat<(N < 8 ? N : 8)>;
           const std::uint32_t b = node.child[std::countr_zero(rest)];
           const TriangleBlock* ba = blocks + (a & ~kLeaf);
           const TriangleBlock* bb = blocks + (b & ~kLeaf);
           local.blocks(2);
           const PairHits ph =
-              test.pair_hits(*ba, *bb, Pair::broadcast(t_min), Pair::broadcast(t_below));
+              test.pair_hits(*ba, *bb, PairLanes<N>::broadcast(t_min),
+                             PairLanes<N>::broadcast(t_below));
           for (unsigned m = ph.mask; m; m &= m - 1) {
             const int l = std::countr_zero(m);
             if (on_hit((l < 4 ? ba : bb)->prim_of(l & 3), ph.t[l])) {

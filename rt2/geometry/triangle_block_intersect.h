@@ -261,7 +261,6 @@ struct FastTriangleTest : PairQueries<FastTriangleTest> {
     if (!terms.may_hit(t_min, t_max)) return V::bool_type::from_bits(0);
     return terms.exact(t_min, t_max, t, u, v);
   }
-
 };
 
 // The watertight test of Woop, Benthin and Wald (JCGT 2013) for the lanes of V, each lane
