@@ -133,12 +133,13 @@ struct NodeRay {
 };
 
 // Whether the node test may take the tree form: every 1/dir component finite, and every
-// org * 1/dir (the fused form's offset, with its margin) far from overflow.
+// org * 1/dir (the fused form's offset, with its margin) far from overflow. The three axes
+// in one vfloat4 comparison: axis by axis it was some 25 instructions of every ray's set-up.
 MLIB_INLINE bool tree_form(const Ray& r, const RayPre& pre) {
-  bool ok = true;
-  for (int a = 0; a < 3; ++a)
-    ok &= std::isfinite(pre.inv_dir[a]) && std::fabs(r.org[a] * pre.inv_dir[a]) < 0x1p126f;
-  return ok;
+  const vfloat4 inv = vfloat4::from_f4(pre.inv_dir.m128()), org = vfloat4::from_f4(r.org.m128());
+  const auto ok = (abs(inv) < vfloat4::broadcast(kInfinity)) &  // false for NaN as well
+                  (abs(org * inv) < vfloat4::broadcast(0x1p126f));
+  return (mlib::bits(ok) & 7u) == 7u;  // x, y and z
 }
 
 // The largest float below t (for t > 0; std::nextafter otherwise), without a library call.
