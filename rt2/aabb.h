@@ -21,6 +21,12 @@ struct Aabb {
     lo = mlib::min(lo, b.lo);
     hi = mlib::max(hi, b.hi);
   }
+  // Whether p (x, y, z; w is ignored) lies in the box, its faces included.
+  bool contains(const vec4& p) const {
+    const mlib::simd::f4 in = mlib::simd::bit_and(mlib::simd::cmp_le(lo.m128(), p.m128()),
+                                                  mlib::simd::cmp_le(p.m128(), hi.m128()));
+    return (mlib::simd::movemask(in) & 7) == 7;
+  }
   vec4 extent() const { return hi - lo; }
   vec4 center() const { return (lo + hi) * 0.5f; }
   // Surface area (0 for an empty box), the SAH's measure.

@@ -258,6 +258,7 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
   blocks.reserve(blocks.size() + leaf_blocks);
   Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();
+  out.bounds = {mlib::load_xyz(bvh.nodes[0].lo), mlib::load_xyz(bvh.nodes[0].hi)};
   out.prefetch_pushed =
       out.nodes.size() * sizeof(WideNode<N>) + leaf_blocks * sizeof(TriangleBlock) >=
       kPrefetchPushedBytes;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "mlib/huge_pages.h"
+#include "rt2/aabb.h"
 #include "rt2/bvh/node.h"
 #include "rt2/geometry/triangle_block.h"
 
@@ -64,6 +65,10 @@ struct WideBvh {
   // (mlib/huge_pages.h): a ray reads a few nodes anywhere in the array.
   mlib::HugePageVector<WideNode<N>> nodes;
   std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
+  // The binary tree's root box (padded, build.cpp), which holds every child box: a ray that
+  // misses it (slab_entry, as the binary tree's walk tests it) hits no triangle, and the
+  // closest-hit walk returns before its per-ray set-up (wide_traverse.h, may_enter).
+  Aabb bounds;
   std::uint32_t leaves = 0;
   std::uint32_t max_depth = 0;
   // Whether the closest-hit walk prefetches every child it pushes, not only the one it goes

@@ -10,7 +10,8 @@
 // (0 * inf) is replaced by the neighbouring bound, because maxps / minps return their
 // second operand for NaN: such a ray counts as inside the slab.
 //
-// Closest hit: of two children a ray enters, the nearer is visited first; three or more are
+// Closest hit: a ray from outside the tree's box that misses it returns before any set-up
+// (may_enter). Of two children a ray enters, the nearer is visited first; three or more are
 // pushed in the node's order for the ray's octant (WideNode::octant_order: roughly nearest
 // first, without sorting, one compress_in_order in the 8- and 16-wide kernels; the 4-wide
 // kernel sorts them by distance), the top one visited. The others wait on a stack with their
@@ -353,6 +354,23 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
   }
 }
 
+// Whether `ray` may meet the tree within [t_min, t_max]: its origin lies in the tree's box
+// (WideBvh::bounds), or it enters the box by the slab test the binary tree's walk makes
+// (aabb.h: conservative, so no triangle hit is lost). A ray that misses the box then costs
+// neither the walk's per-ray set-up (the node ray's constants, the walk's frame) nor its
+// first node test. Camera rays miss a mesh's box wherever it does not fill the image:
+// bench_trace's primary rays (three in four miss the mesh) went from 495 to 380 instructions
+// a ray on the dragon (callgrind, AVX2 kernels; Embree's rtcIntersect1 370) and ran 4-18 %
+// faster. The origin test comes first: rays that start inside the box (from a surface, as
+// reflections do) pay two compares, not the slab test. The closest-hit walk only: shadow
+// rays leave surfaces, and in the any-hit walk the test cost them 1.6-2.5 %.
+template <int N>
+MLIB_INLINE bool may_enter(const WideBvh<N>& bvh, const Ray& ray, const RayPre& pre, float t_min,
+                           float t_max) {
+  return bvh.bounds.contains(ray.org) ||
+         slab_entry(bvh.bounds.lo, bvh.bounds.hi, pre, t_min, t_max) != kInfinity;
+}
+
 // walk(finite, count) with the walks' two compile-time choices as std::bool_constant:
 // Finite (the ray takes the node test's tree form) and Count (the caller wants counts).
 template <class Walk>
@@ -370,6 +388,7 @@ MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
                                   TraversalCounts* counts) {
   if (bvh.root == kNoChild) return;
   const RayPre pre(ray);
+  if (!may_enter(bvh, ray, pre, t_min, h.t)) return;
   const Hit t = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
     return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
         bvh, blocks, ray, pre, test, t_min, h.t, h.prim, counts);

@@ -242,6 +242,94 @@ TEST(Bvh, ClosestHitEqualsBruteForceOnTheChairMesh) {
   }
 }
 
+// The walks let a ray whose origin lies outside the tree's box go without walking when it
+// misses that box by the slab test (WideBvh::bounds, may_enter). The box is as tight as it
+// gets here: a closed box of twelve triangles (faces at non-round coordinates) around a
+// soup, so that the tree's box is the mesh's own to the builder's padding. Rays from
+// outside clip it: aimed at points of its edges and corners, from near and from a million
+// units out, and rays lying in the planes of its faces (a zero direction component: the
+// slab test's infinities and 0 * inf) aimed along a face at an edge of the next one.
+// Closest hits must be brute force's, bit for bit, and any hit must agree with them on
+// segments ending short of, at and past the aimed-at point.
+TEST(Bvh, RaysFromOutsideTheTreesBoxThatClipItOrLieInItsFacesFindBruteForcesHits) {
+  const float lo[3] = {-1.3f, -1.25f, -1.2f}, hi[3] = {1.2f, 1.35f, 1.3f};
+  Mesh box;
+  box.name = "box";
+  for (int c = 0; c < 8; ++c)
+    box.positions.push_back(vec4(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]));
+  // Two triangles per face, the corners of each face in order around it.
+  const std::uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                     {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  for (const auto& f : faces) {
+    box.faces.push_back({f[0], f[1], f[2]});
+    box.faces.push_back({f[0], f[2], f[3]});
+  }
+  box.face_materials.assign(box.faces.size(), 0);
+  Mesh mesh = test::random_soup(400, 0.3f, 17);
+  mesh.append(box);
+  const Scene scene = test::geometry_scene({mesh});
+
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const auto corner = [&](int c) {
+    return vec4(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]);
+  };
+  // A point of an edge of the box: corners c and c with bit `axis` set.
+  const auto edge_point = [&](int axis) {
+    const int c = int(rng() % 8) & ~(1 << axis);
+    const vec4 a = corner(c), b = corner(c | 1 << axis);
+    return u(rng) < 0.1f ? (u(rng) < 0.5f ? a : b) : a + (b - a) * u(rng);
+  };
+  std::vector<Ray> rays;
+  std::vector<float> reach;  // distance to the aimed-at point
+  const auto aim = [&](const vec4& org, const vec4& target) {
+    const vec4 d = target - org;
+    const float len = std::sqrt(float(dot(d, d)));
+    rays.push_back(Ray(org, d / len));
+    reach.push_back(len);
+  };
+  for (int i = 0; i < 6000 / kSampleScale; ++i) {
+    const float far = i % 3 == 0 ? 1e6f : 4.0f;  // a million units out, or near
+    aim(far * test::random_direction(rng), edge_point(int(rng() % 3)));
+  }
+  for (int i = 0; i < 3000 / kSampleScale; ++i) {
+    // In the plane of a face (axis a at its low or high side), from outside the face,
+    // towards a point of an edge that face shares with a face across axis b.
+    const int a = int(rng() % 3), b = (a + 1 + int(rng() % 2)) % 3, c = 3 - a - b;
+    const float plane = rng() % 2 ? hi[a] : lo[a];
+    vec4 target, org;
+    target[a] = org[a] = plane;
+    target[b] = rng() % 2 ? hi[b] : lo[b];
+    target[c] = lo[c] + (hi[c] - lo[c]) * u(rng);
+    org[b] = target[b] + (target[b] > 0 ? 1.0f : -1.0f) * (0.5f + 3.0f * u(rng));
+    org[c] = target[c] + 4.0f * (u(rng) - 0.5f);
+    aim(org, target);
+  }
+  const auto inside = [&](const vec4& p) {
+    return p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] &&
+           p[2] <= hi[2];
+  };
+  for (const Ray& r : rays) ASSERT_FALSE(inside(r.org));  // every ray starts outside the box
+  const BvhConfig config{4, Split::sah, 16};
+  const std::size_t hits = expect_closest_equals_brute_force(scene, config, rays);
+  EXPECT_GT(hits, rays.size() / 2);   // the clipping rays hit the box's faces ...
+  EXPECT_LT(hits, rays.size());       // ... and some rays miss it
+  for (Isa isa : test::runnable_isas()) {
+    const Accel acc = Accel::build(scene, config, isa);
+    for (float part : {0.5f, 1.0f, 1.5f}) {
+      std::vector<float> t_max(rays.size());
+      for (std::size_t i = 0; i < rays.size(); ++i) t_max[i] = reach[i] * part;
+      for (bool watertight : {false, true}) {
+        const AnyVsClosest a = any_vs_closest(acc, watertight, rays, t_max);
+        EXPECT_EQ(a.disagree, 0u) << isa_name(isa) << " " << part << (watertight ? " watertight" : " fast");
+        if (part > 1.0f) {
+          EXPECT_GT(a.blocked, rays.size() / 2);
+        }
+      }
+    }
+  }
+}
+
 TEST(Bvh, AnyHitAgreesWithClosestHitOnSegments) {
   const Scene scene = test::geometry_scene({test::random_soup(500, 0.3f, 3)},
                                            {Sphere{vec4(0, 0, 0), 0.3f}});
@@ -377,6 +465,17 @@ void expect_wide_tree_is_well_formed(const Accel& acc, std::uint32_t max_leaf) {
   EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
   EXPECT_EQ(leaves, acc.stats.leaves);
   EXPECT_EQ(leaves, w.leaves);
+  // The tree's box (WideBvh::bounds), which a ray from outside must enter to be walked,
+  // holds every triangle and the root's child boxes.
+  for (const Triangle& t : acc.tris)
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(w.bounds.contains(t.vertex(i)));
+  if (!(w.root & kLeaf))
+    for (int i = 0; i < N; ++i)
+      if (w.nodes[0].bounds[0][i] <= w.nodes[0].bounds[1][i])
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(w.nodes[0].bounds[2 * a][i], w.bounds.lo[a]);
+          EXPECT_LE(w.nodes[0].bounds[2 * a + 1][i], w.bounds.hi[a]);
+        }
 }
 
 TEST(Bvh, TheWideTreeHoldsEveryTriangleOnceInBlocksUnderItsParentsBox) {
