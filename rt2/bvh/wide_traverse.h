@@ -355,15 +355,15 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
 }
 
 // Whether `ray` may meet the tree within [t_min, t_max]: its origin lies in the tree's box
-// (WideBvh::bounds), or it enters the box by the slab test the binary tree's walk makes
-// (aabb.h: conservative, so no triangle hit is lost). A ray that misses the box then costs
-// neither the walk's per-ray set-up (the node ray's constants, the walk's frame) nor its
-// first node test. Camera rays miss a mesh's box wherever it does not fill the image:
-// bench_trace's primary rays (three in four miss the mesh) went from 495 to 380 instructions
-// a ray on the dragon (callgrind, AVX2 kernels; Embree's rtcIntersect1 370) and ran 4-18 %
-// faster. The origin test comes first: rays that start inside the box (from a surface, as
-// reflections do) pay two compares, not the slab test. The closest-hit walk only: shadow
-// rays leave surfaces, and in the any-hit walk the test cost them 1.6-2.5 %.
+// (WideBvh::bounds), or it enters the box by the slab test the binary tree's walk makes (aabb.h:
+// conservative, so no triangle hit is lost). A ray that misses the box then costs neither the
+// walk's per-ray set-up (the node ray's constants, the walk's frame) nor its first node test.
+// Camera rays miss a mesh's box wherever it does not fill the image: bench_trace's primary rays
+// (three in four miss the mesh) went from 495 to 380 instructions a ray on the dragon (callgrind,
+// AVX2 kernels; Embree's rtcIntersect1 370) and ran 3-19 % faster on the four bench-peer meshes.
+// The origin test comes first: rays that start inside the box (from a surface, as reflections do)
+// pay two compares, not the slab test. The closest-hit walk only: shadow rays leave surfaces, and
+// in the any-hit walk the test cost them 1.6-2.5 %.
 template <int N>
 MLIB_INLINE bool may_enter(const WideBvh<N>& bvh, const Ray& ray, const RayPre& pre, float t_min,
                            float t_max) {

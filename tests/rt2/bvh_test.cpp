@@ -242,21 +242,23 @@ TEST(Bvh, ClosestHitEqualsBruteForceOnTheChairMesh) {
   }
 }
 
-// The walks let a ray whose origin lies outside the tree's box go without walking when it
-// misses that box by the slab test (WideBvh::bounds, may_enter). The box is as tight as it
-// gets here: a closed box of twelve triangles (faces at non-round coordinates) around a
-// soup, so that the tree's box is the mesh's own to the builder's padding. Rays from
-// outside clip it: aimed at points of its edges and corners, from near and from a million
-// units out, and rays lying in the planes of its faces (a zero direction component: the
-// slab test's infinities and 0 * inf) aimed along a face at an edge of the next one.
-// Closest hits must be brute force's, bit for bit, and any hit must agree with them on
-// segments ending short of, at and past the aimed-at point.
+// The closest-hit query lets a ray whose origin lies outside the tree's box go without a walk when
+// it misses that box by the slab test (WideBvh::bounds, may_enter). The box is as tight as it gets
+// here: a closed box of twelve triangles (faces at non-round coordinates) around a soup, so that
+// the tree's box is the mesh's own to the builder's padding. Rays from outside clip it: aimed at
+// points of its edges and corners, from near and from a million units out, and rays lying in the
+// planes of its faces (a zero direction component: the slab test's infinities and 0 * inf) aimed
+// along a face at an edge of the next one. Closest hits must be brute force's, bit for bit, and any
+// hit must agree with them on segments ending short of, at and past the aimed-at point.
 TEST(Bvh, RaysFromOutsideTheTreesBoxThatClipItOrLieInItsFacesFindBruteForcesHits) {
+  // The box straddles the coordinate origin: outward from a face is away from 0.
   const float lo[3] = {-1.3f, -1.25f, -1.2f}, hi[3] = {1.2f, 1.35f, 1.3f};
+  const auto corner = [&](int c) {  // bit a of c: the high side of axis a
+    return vec4(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]);
+  };
   Mesh box;
   box.name = "box";
-  for (int c = 0; c < 8; ++c)
-    box.positions.push_back(vec4(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]));
+  for (int c = 0; c < 8; ++c) box.positions.push_back(corner(c));
   // Two triangles per face, the corners of each face in order around it.
   const std::uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
                                      {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
@@ -271,9 +273,6 @@ TEST(Bvh, RaysFromOutsideTheTreesBoxThatClipItOrLieInItsFacesFindBruteForcesHits
 
   std::mt19937 rng(19);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  const auto corner = [&](int c) {
-    return vec4(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]);
-  };
   // A point of an edge of the box: corners c and c with bit `axis` set.
   const auto edge_point = [&](int axis) {
     const int c = int(rng() % 8) & ~(1 << axis);
@@ -321,7 +320,8 @@ TEST(Bvh, RaysFromOutsideTheTreesBoxThatClipItOrLieInItsFacesFindBruteForcesHits
       for (std::size_t i = 0; i < rays.size(); ++i) t_max[i] = reach[i] * part;
       for (bool watertight : {false, true}) {
         const AnyVsClosest a = any_vs_closest(acc, watertight, rays, t_max);
-        EXPECT_EQ(a.disagree, 0u) << isa_name(isa) << " " << part << (watertight ? " watertight" : " fast");
+        EXPECT_EQ(a.disagree, 0u)
+            << isa_name(isa) << " " << part << (watertight ? " watertight" : " fast");
         if (part > 1.0f) {
           EXPECT_GT(a.blocked, rays.size() / 2);
         }
