@@ -158,7 +158,10 @@ class Collapser {
       }
       return d;
     };
-    float d[N + 1];
+    // d[k] for 2 <= k <= leaves (an inner node has two leaves at least); the rest +inf, so
+    // that no entry is left unset where g++ cannot see that none is read.
+    Costs d;
+    d.fill(std::numeric_limits<float>::infinity());
     std::uint8_t arg[N + 1];
     for (int k = 2; k <= p.leaves; ++k) {
       const int lo = std::max(1, k - right.leaves), hi = std::min(k - 1, left.leaves);
