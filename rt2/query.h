@@ -167,7 +167,7 @@ inline void closest_plane_or_sphere_packet(const Accel& acc, const PacketRays<kW
                                            PacketMask lanes, float t_min, Hit* hits,
                                            float* t_bound) {
   using V = mlib::vfloat<kRayLanes>;
-  if (acc.planes.empty() && acc.spheres.empty()) {
+  if (!has_planes_or_spheres(acc)) {
     for (int c = 0; c < kPacketSize; c += kRayLanes)
       select(V::bool_type::from_bits(lanes >> c & ((1u << kRayLanes) - 1)), V::load(t_bound + c),
              V::broadcast(0.0f))
@@ -382,7 +382,7 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   PacketMask blocked = 0;
   alignas(64) float bound[kPacketSize];
   lane_bounds(lanes, t_max, bound);
-  for (PacketMask m = open; m; m &= m - 1) {
+  for (PacketMask m = has_planes_or_spheres(acc) ? open : 0; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
   }
