@@ -51,8 +51,7 @@ inline bool has_nan(const Ray& r) {
   return !(r.org == r.org) || !(r.dir == r.dir);  // vec4 == is false when any lane is NaN
 }
 
-// Whether the scene has planes or spheres: tested inline, so that a scene of meshes only
-// makes no call per ray for them (the calls found nothing, 30 instructions a ray).
+// Whether the scene has planes or spheres.
 MLIB_INLINE bool has_planes_or_spheres(const Accel& acc) {
   return !(acc.planes.empty() && acc.spheres.empty());
 }
@@ -72,10 +71,9 @@ MLIB_INLINE void sphere_leaves(const Accel& acc, const Ray& ray, float t_min, fl
   traverse<AnyHit>(acc.sphere_bvh, RayPre(ray), t_min, t_max, leaf);
 }
 
-// The closest plane or sphere hit in (t_min, h.t), into h. Planes and spheres are tested in
-// the same order by every ISA; triangles, whose order depends on the tree's width, break
-// ties by index (and win ties against the others).
-inline void closest_plane_or_sphere(const Accel& acc, const Ray& ray, float t_min, Hit& h) {
+namespace detail {
+// closest_plane_or_sphere's tests, for a scene that has planes or spheres.
+inline void closest_of_planes_and_spheres(const Accel& acc, const Ray& ray, float t_min, Hit& h) {
   for (std::uint32_t i = 0; i < acc.planes.size(); ++i) {
     float t;
     if (intersect(acc.planes[i], ray, t_min, h.t, t)) {
@@ -95,6 +93,16 @@ inline void closest_plane_or_sphere(const Accel& acc, const Ray& ray, float t_mi
                          }
                          return false;
                        });
+}
+}  // namespace detail
+
+// The closest plane or sphere hit in (t_min, h.t), into h. Planes and spheres are tested in
+// the same order by every ISA; triangles, whose order depends on the tree's width, break
+// ties by index (and win ties against the others). Whether there are any is asked inline,
+// so that a scene of meshes only makes no call per ray (the call found nothing, 30
+// instructions a ray).
+MLIB_INLINE void closest_plane_or_sphere(const Accel& acc, const Ray& ray, float t_min, Hit& h) {
+  if (has_planes_or_spheres(acc)) detail::closest_of_planes_and_spheres(acc, ray, t_min, h);
 }
 
 // The closest hit in (t_min, t_max) over planes, spheres and triangles; t = inf and
@@ -116,7 +124,7 @@ MLIB_INLINE Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float
     h.t = kInfinity;
     return h;
   }
-  if (has_planes_or_spheres(acc)) closest_plane_or_sphere(acc, ray, t_min, h);
+  closest_plane_or_sphere(acc, ray, t_min, h);
   closest_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                            t_min, h, counts);
   if (!h.found()) h.t = kInfinity;
@@ -337,9 +345,9 @@ inline void closest_hit_packet(const Accel& acc, const RayColumns& rays, std::si
   closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, t_max, hits, counts);
 }
 
-// Whether a plane or a sphere (every surface opaque) lies on `ray` in (t_min, t_max).
-inline bool plane_or_sphere_in_the_way(const Accel& acc, const Ray& ray, float t_min,
-                                       float t_max) {
+namespace detail {
+// plane_or_sphere_in_the_way's tests, for a scene that has planes or spheres.
+inline bool plane_or_sphere_blocks(const Accel& acc, const Ray& ray, float t_min, float t_max) {
   for (const Plane& p : acc.planes) {
     float t;
     if (intersect(p, ray, t_min, t_max, t)) return true;
@@ -356,6 +364,14 @@ inline bool plane_or_sphere_in_the_way(const Accel& acc, const Ray& ray, float t
                       });
   return hit;
 }
+}  // namespace detail
+
+// Whether a plane or a sphere (every surface opaque) lies on `ray` in (t_min, t_max); as
+// closest_plane_or_sphere, whether there are any is asked inline.
+MLIB_INLINE bool plane_or_sphere_in_the_way(const Accel& acc, const Ray& ray, float t_min,
+                                            float t_max) {
+  return has_planes_or_spheres(acc) && detail::plane_or_sphere_blocks(acc, ray, t_min, t_max);
+}
 
 // Whether anything at all (every surface opaque) lies on `ray` in (t_min, t_max).
 // Always inlined into its caller's loop, as closest_hit: GCC 12 kept the watertight instance
@@ -364,8 +380,7 @@ template <bool Watertight>
 MLIB_INLINE bool occluded(const Accel& acc, const Ray& ray, float t_min, float t_max,
                           TraversalCounts* counts = nullptr) {
   if (has_nan(ray)) return false;
-  if (has_planes_or_spheres(acc) && plane_or_sphere_in_the_way(acc, ray, t_min, t_max))
-    return true;
+  if (plane_or_sphere_in_the_way(acc, ray, t_min, t_max)) return true;
   return any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                               t_min, t_max, [](std::uint32_t, float) { return true; }, counts);
 }
@@ -382,7 +397,7 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
   PacketMask blocked = 0;
   alignas(64) float bound[kPacketSize];
   lane_bounds(lanes, t_max, bound);
-  for (PacketMask m = has_planes_or_spheres(acc) ? open : 0; m; m &= m - 1) {
+  for (PacketMask m = open; m; m &= m - 1) {
     const int l = std::countr_zero(m);
     if (plane_or_sphere_in_the_way(acc, rays[l], t_min, t_max[l])) blocked |= 1u << l;
   }

@@ -98,8 +98,6 @@ struct NodeRay {
     for (int a = 0; a < 3; ++a) {
       near[a] = 2 * a + int(negative >> a & 1u);
       far[a] = near[a] ^ 1;
-    }
-    for (int a = 0; a < 3; ++a) {
       org[a] = V::broadcast(r.org[a]);
       inv_near[a] = V::broadcast(pre.inv_dir[a]);
       // Far distances carry Ize's 1 + 2 gamma(3) in the reciprocal: the same three

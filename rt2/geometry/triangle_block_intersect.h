@@ -16,6 +16,7 @@
 // its 290-370 (callgrind, a shadow set of 0.28 triangles a ray).
 #pragma once
 
+#include <array>
 #include <bit>
 
 #include "mlib/vfloat.h"
@@ -109,6 +110,12 @@ struct BlockPairLanes {
   MLIB_INLINE V v2(int k) const { return V::load_halves(a.v2[k], b.v2[k]); }
   MLIB_INLINE V n(int k) const { return V::load_halves(a.n[k], b.n[k]); }
 };
+
+// The x, y and z of one ray's point or direction, each in every lane of V.
+template <class V>
+MLIB_INLINE std::array<V, 3> broadcast_xyz(const vec4& p) {
+  return {V::broadcast(p[0]), V::broadcast(p[1]), V::broadcast(p[2])};
+}
 
 // The thesis's test (formula 10) for the lanes of V, each lane one (triangle, ray) pair,
 // computing what `intersect` (triangle.h) computes. Shared by the four-triangle test below
@@ -212,11 +219,9 @@ struct FastTriangleTest : PairQueries<FastTriangleTest> {
   MLIB_INLINE Undivided undivided(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
     // Built in place and returned as one object: returning `{terms, terms.may_hit(...)}`
     // made GCC 12 copy the terms through memory, and single rays 12-14 % slower.
-    const vfloat4 org[3] = {vfloat4::broadcast(ray.org[0]), vfloat4::broadcast(ray.org[1]),
-                            vfloat4::broadcast(ray.org[2])};
-    const vfloat4 dir[3] = {vfloat4::broadcast(ray.dir[0]), vfloat4::broadcast(ray.dir[1]),
-                            vfloat4::broadcast(ray.dir[2])};
-    Undivided d{FastTerms<vfloat4>(TriangleLanes<vfloat4, LaneMap::own>{b}, org, dir), 0};
+    const auto org = broadcast_xyz<vfloat4>(ray.org), dir = broadcast_xyz<vfloat4>(ray.dir);
+    Undivided d{
+        FastTerms<vfloat4>(TriangleLanes<vfloat4, LaneMap::own>{b}, org.data(), dir.data()), 0};
     d.may_hit = d.terms.may_hit(t_min, t_max);
     return d;
   }
@@ -252,9 +257,8 @@ struct FastTriangleTest : PairQueries<FastTriangleTest> {
   template <class V>
   MLIB_INLINE typename V::bool_type pair(const TriangleBlock& a, const TriangleBlock& b,
                                          V t_min, V t_max, V& t, V& u, V& v) const {
-    const V o[3] = {V::broadcast(ray.org[0]), V::broadcast(ray.org[1]), V::broadcast(ray.org[2])};
-    const V d[3] = {V::broadcast(ray.dir[0]), V::broadcast(ray.dir[1]), V::broadcast(ray.dir[2])};
-    const FastTerms<V> terms(BlockPairLanes<V>{a, b}, o, d);
+    const auto o = broadcast_xyz<V>(ray.org), d = broadcast_xyz<V>(ray.dir);
+    const FastTerms<V> terms(BlockPairLanes<V>{a, b}, o.data(), d.data());
     if (!terms.may_hit(t_min, t_max)) return V::bool_type::from_bits(0);
     return terms.exact(t_min, t_max, t, u, v);
   }
@@ -355,8 +359,8 @@ struct WatertightTriangleTest : PairQueries<WatertightTriangleTest> {
   template <class V>
   MLIB_INLINE typename V::bool_type pair(const TriangleBlock& a, const TriangleBlock& b,
                                          V t_min, V t_max, V& t, V& u, V& v) const {
-    const V o[3] = {V::broadcast(ray.org[0]), V::broadcast(ray.org[1]), V::broadcast(ray.org[2])};
-    return WatertightLanes<V>::test(BlockPairLanes<V>{a, b}, o, V::broadcast(ray.sx),
+    return WatertightLanes<V>::test(BlockPairLanes<V>{a, b}, broadcast_xyz<V>(ray.org).data(),
+                                    V::broadcast(ray.sx),
                                     V::broadcast(ray.sy), V::broadcast(ray.sz), ray.kx, ray.ky,
                                     ray.kz, t_min, t_max, t, u, v);
   }
@@ -364,9 +368,8 @@ struct WatertightTriangleTest : PairQueries<WatertightTriangleTest> {
  private:
   MLIB_INLINE vbool4 test(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max, vfloat4& t,
                           vfloat4& u, vfloat4& v) const {
-    const vfloat4 o[3] = {vfloat4::broadcast(ray.org[0]), vfloat4::broadcast(ray.org[1]),
-                          vfloat4::broadcast(ray.org[2])};
-    return WatertightLanes<vfloat4>::test(TriangleLanes<vfloat4, LaneMap::own>{b}, o,
+    return WatertightLanes<vfloat4>::test(TriangleLanes<vfloat4, LaneMap::own>{b},
+                                          broadcast_xyz<vfloat4>(ray.org).data(),
                                           vfloat4::broadcast(ray.sx), vfloat4::broadcast(ray.sy),
                                           vfloat4::broadcast(ray.sz), ray.kx, ray.ky, ray.kz,
                                           t_min, t_max, t, u, v);
