@@ -84,11 +84,29 @@ template <int N, bool Finite>
 struct NodeRay {
   using V = mlib::vfloat<N>;
   static constexpr bool kFused = Finite && kFusedNodeTest<N>;
-  V org[3], inv_near[3], inv_far[3];
-  V c_near[3], c_far[3];  // the fused form's offsets
+  // The ray's constants. The 16-wide kernels keep them as floats and broadcast them where a
+  // node is tested: their walks spilled the vectors anyway (GCC 12), a 64-byte store each
+  // per ray, and a broadcast from memory is one load as a reload is. bench_trace, old and
+  // new binaries alternated (rt2 / Embree, 3-6 rounds, four meshes): watertight primary,
+  // shadow and reflection rays +1 ... +16 %, fast ones -0.2 ... +7.6 %; fandisk_large's
+  // watertight shadow rays (1.1 nodes a ray: set-up is most of their cost) +20 %. In the 4-
+  // and 8-wide kernels, whose loops keep some of the vectors in registers, floats measured
+  // 1-6 % slower.
+  using Constant = std::conditional_t<(N >= 16), float, V>;
+  Constant org[3], inv_near[3], inv_far[3];
+  Constant c_near[3], c_far[3];  // the fused form's offsets
   int near[3], far[3];  // box rows (WideNode::bounds)
   int order_shift;  // kOrderBits<N> x the ray's octant: where WideNode::octant_order
                     // keeps its order
+
+  static MLIB_INLINE Constant constant(float c) {
+    if constexpr (std::is_same_v<Constant, float>)
+      return c;
+    else
+      return V::broadcast(c);
+  }
+  static MLIB_INLINE V lanes(float c) { return V::broadcast(c); }
+  static MLIB_INLINE V lanes(V c) { return c; }
 
   explicit NodeRay(const Ray& r, const RayPre& pre) {
     // 1/dir is +-inf for a zero component, with the zero's sign: the sign bits decide, all
@@ -98,19 +116,19 @@ struct NodeRay {
     for (int a = 0; a < 3; ++a) {
       near[a] = 2 * a + int(negative >> a & 1u);
       far[a] = near[a] ^ 1;
-      org[a] = V::broadcast(r.org[a]);
-      inv_near[a] = V::broadcast(pre.inv_dir[a]);
+      org[a] = constant(r.org[a]);
+      inv_near[a] = constant(pre.inv_dir[a]);
       // Far distances carry Ize's 1 + 2 gamma(3) in the reciprocal: the same three
       // roundings before the padding as (far - org) * inv * pad, one multiply less per node.
       const float inv_far_s = pre.inv_dir[a] * kSlabPad;
-      inv_far[a] = V::broadcast(inv_far_s);
+      inv_far[a] = constant(inv_far_s);
       if constexpr (kFused) {
         // One margin for both: eight ulps of org * inv, which is more than four of
         // org * inv_far (inv_far exceeds inv by 2^-21 of itself at most).
         const float p = r.org[a] * pre.inv_dir[a], p_far = r.org[a] * inv_far_s;
         const float margin = std::fabs(p) * 0x1p-21f + 0x1p-125f;
-        c_near[a] = V::broadcast(-(p + margin));
-        c_far[a] = V::broadcast(margin - p_far);
+        c_near[a] = constant(-(p + margin));
+        c_far[a] = constant(margin - p_far);
       }
     }
   }
@@ -121,11 +139,11 @@ struct NodeRay {
     V n[3], f[3];
     for (int a = 0; a < 3; ++a) {
       if constexpr (kFused) {
-        n[a] = fmadd(V::load(node.bounds[near[a]]), inv_near[a], c_near[a]);
-        f[a] = fmadd(V::load(node.bounds[far[a]]), inv_far[a], c_far[a]);
+        n[a] = fmadd(V::load(node.bounds[near[a]]), lanes(inv_near[a]), lanes(c_near[a]));
+        f[a] = fmadd(V::load(node.bounds[far[a]]), lanes(inv_far[a]), lanes(c_far[a]));
       } else {
-        n[a] = (V::load(node.bounds[near[a]]) - org[a]) * inv_near[a];
-        f[a] = (V::load(node.bounds[far[a]]) - org[a]) * inv_far[a];
+        n[a] = (V::load(node.bounds[near[a]]) - lanes(org[a])) * lanes(inv_near[a]);
+        f[a] = (V::load(node.bounds[far[a]]) - lanes(org[a])) * lanes(inv_far[a]);
       }
     }
     if constexpr (Finite) {
