@@ -85,13 +85,13 @@ struct NodeRay {
   using V = mlib::vfloat<N>;
   static constexpr bool kFused = Finite && kFusedNodeTest<N>;
   // The ray's constants. The 16-wide kernels keep them as floats and broadcast them where a
-  // node is tested: their walks spilled the vectors anyway (GCC 12), a 64-byte store each
-  // per ray, and a broadcast from memory is one load as a reload is. bench_trace, old and
-  // new binaries alternated (rt2 / Embree, 3-6 rounds, four meshes): watertight primary,
-  // shadow and reflection rays +1 ... +16 %, fast ones -0.2 ... +7.6 %; fandisk_large's
-  // watertight shadow rays (1.1 nodes a ray: set-up is most of their cost) +20 %. In the 4-
-  // and 8-wide kernels, whose loops keep some of the vectors in registers, floats measured
-  // 1-6 % slower.
+  // node is tested: their walks spilled every vector of these they use (GCC 12; twelve in
+  // the fused form), a 64-byte store each per ray, and a broadcast from memory is one load
+  // as a reload is. bench_trace, old and new binaries alternated (rt2 / Embree, 3-6
+  // rounds, four meshes): watertight primary, shadow and reflection rays +1 ... +16 %,
+  // fast ones -0.2 ... +7.6 %; fandisk_large's watertight shadow rays (1.1 nodes a ray:
+  // set-up is most of their cost) +12 % (1 thread) and +47 % (2). In the 4- and 8-wide
+  // kernels floats measured 1-6 % slower (the dragon, three rounds), so they keep vectors.
   using Constant = std::conditional_t<(N >= 16), float, V>;
   Constant org[3], inv_near[3], inv_far[3];
   Constant c_near[3], c_far[3];  // the fused form's offsets
@@ -99,6 +99,7 @@ struct NodeRay {
   int order_shift;  // kOrderBits<N> x the ray's octant: where WideNode::octant_order
                     // keeps its order
 
+  // A constant as stored (constant) and as the node test uses it (lanes).
   static MLIB_INLINE Constant constant(float c) {
     if constexpr (std::is_same_v<Constant, float>)
       return c;
