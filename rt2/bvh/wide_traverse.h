@@ -89,9 +89,8 @@ struct NodeRay {
   // the fused form), a 64-byte store each per ray, and a broadcast from memory is one load
   // as a reload is. bench_trace, old and new binaries alternated (rt2 / Embree, 3-6
   // rounds, four meshes): watertight primary, shadow and reflection rays +1 ... +16 %,
-  // fast ones -0.2 ... +7.6 %; fandisk_large's watertight shadow rays (1.1 nodes a ray:
-  // set-up is most of their cost) +12 % (1 thread) and +47 % (2). In the 4- and 8-wide
-  // kernels floats measured 1-6 % slower (the dragon, three rounds), so they keep vectors.
+  // fast ones -0.2 ... +7.6 %. In the 4- and 8-wide kernels floats measured 1-6 % slower
+  // (the dragon, three rounds), so they keep vectors.
   using Constant = std::conditional_t<(N >= 16), float, V>;
   Constant org[3], inv_near[3], inv_far[3];
   Constant c_near[3], c_far[3];  // the fused form's offsets
