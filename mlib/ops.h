@@ -78,7 +78,7 @@ struct Normalize {
 
  private:
   // Out of line (vec4.cpp): compiled once, for the baseline instruction set, so that the
-  // translation units built for wider sets (rt2/isa.h) never hold a copy of their own.
+  // translation units built for wider sets (rt2/base/isa.h) never hold a copy of their own.
   [[gnu::cold]] static f4 rescaled(f4 a);
 };
 

@@ -76,14 +76,14 @@ MLIB_INLINE f4 blend(f4 mask, f4 if_false, f4 if_true) {
 // result is used as a vector.
 //
 // In the translation units of the AVX2 and AVX-512 ray kernels (the build defines
-// MLIB_SHUFFLED_DOT for them alone, rt2/isa.h), dp_bcast is one multiply and two
+// MLIB_SHUFFLED_DOT for them alone, rt2/base/isa.h), dp_bcast is one multiply and two
 // shuffle-adds instead, every lane summing (x x' + y y') + (z z' + w w') with its operands
 // in that order: the same bits (dpps, four micro-ops with a long latency, made the kernel's
 // hit shading slower: headline frame +2.5 % without it). The baseline keeps dpps, the
 // thesis's form (tests/mlib/asm_test.cpp counts its instructions), also where it is built
 // with AVX2 (scons arch=native). Each form lives in an inline namespace of its own, so the
 // two dp_bcast never share a symbol; their callers (vec4's dot, normalize, ...) are
-// always-inline, so no out-of-line copy of one is ever shared either (tests/rt2/isa_test.cpp
+// always-inline, so no out-of-line copy of one is ever shared either (tests/rt2/base/isa_test.cpp
 // checks that no wide instruction leaves the wide units).
 #if defined(MLIB_SHUFFLED_DOT)
 inline namespace shuffled_dot {
@@ -175,7 +175,7 @@ MLIB_INLINE void truncate_clamp(f4 a, std::int32_t lo, std::int32_t hi, std::int
 
 // Each lane's bits, read as an int32, plus k truncated toward zero (NaN and values outside
 // int32 give INT32_MIN), or minus it where a < 0, wrapping: a moved by trunc(k) floats,
-// away from zero for k > 0 (Wächter and Binder's offset, rt2/offset.h).
+// away from zero for k > 0 (Wächter and Binder's offset, rt2/geometry/offset.h).
 MLIB_INLINE f4 step_ulps(f4 a, f4 k) {
   const __m128i steps = _mm_cvttps_epi32(k);
   const __m128i negative = _mm_castps_si128(_mm_cmplt_ps(a, _mm_setzero_ps()));

@@ -3,7 +3,7 @@
 // plain C++ in the scalar build); N = 8: vfloat8 (AVX2, also used by AVX-512 units); N = 16:
 // vfloat16 (AVX-512 units).
 //
-// The translation units that include this are built once per instruction set (rt2/isa.h);
+// The translation units that include this are built once per instruction set (rt2/base/isa.h);
 // the rest of the program stays at the portable baseline.
 #pragma once
 

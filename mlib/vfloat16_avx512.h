@@ -1,7 +1,7 @@
 // mlib/vfloat16_avx512.h — vfloat16 / vbool16: sixteen independent float lanes on AVX-512
 // (a mask register for the booleans), the sibling of vfloat4_sse41.h and vfloat8_avx2.h
 // with the same API (see there). Included only by the translation units built for AVX-512
-// (rt2/isa.h); the packet code takes a packet's 16 rays in one pass with it.
+// (rt2/base/isa.h); the packet code takes a packet's 16 rays in one pass with it.
 #pragma once
 
 #include <immintrin.h>

@@ -4,7 +4,7 @@
 // Unlike vec4 (one point or direction, lanes x y z w), a vfloat4's lanes are four unrelated
 // values. The API is shared with the sibling files vfloat8_avx2.h (eight lanes) and
 // vfloat4_scalar.h (plain C++), so code templated on the width compiles against any of
-// them. Only the translation units built for an ISA include the wide files (rt2/isa.h).
+// them. Only the translation units built for an ISA include the wide files (rt2/base/isa.h).
 //
 // NaN conventions (callers rely on them): min(a, b) / max(a, b) return b in a lane where
 // either operand is NaN; ordered comparisons are false in a NaN lane.

@@ -1,6 +1,6 @@
 // mlib/vfloat8_avx2.h — vfloat8 / vbool8: eight independent float lanes on AVX2, the
 // sibling of vfloat4_sse41.h with the same API (see there). Included only by the
-// translation units built for AVX2 or AVX-512 (rt2/isa.h).
+// translation units built for AVX2 or AVX-512 (rt2/base/isa.h).
 #pragma once
 
 #include <immintrin.h>

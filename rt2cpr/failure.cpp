@@ -4,7 +4,7 @@
 #include <exception>
 #include <new>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 
 namespace rt2cpr {
 

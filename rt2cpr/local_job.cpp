@@ -3,8 +3,8 @@
 
 #include <cstdio>
 
-#include "rt2/error.h"
-#include "rt2/schedule.h"
+#include "rt2/base/error.h"
+#include "rt2/render/schedule.h"
 #include "rt2cpr/clock.h"
 #include "rt2cpr/progress.h"
 

@@ -8,7 +8,7 @@
 // instead (rt2cpr/mpi/job.h).
 #pragma once
 
-#include "rt2/image.h"
+#include "rt2/image/image.h"
 #include "rt2cpr/options.h"
 #include "rt2cpr/report.h"
 #include "rt2cpr/scene_setup.h"

@@ -2,7 +2,7 @@
 // with the chosen backend, report timing, write the image and the statistics.
 //
 // Every failure is one line on stderr ("rt2cpr: ...") and exit status 1 (2 for a bad
-// command line); output files appear complete or not at all (rt2/io/output_file.h).
+// command line); output files appear complete or not at all (rt2/image/output_file.h).
 //
 // The same source is rt2cpr_mpi when compiled with RT2CPR_MPI: it then runs in an MPI job
 // (rt2cpr/mpi/job.h) whose processes all load the scene and render tiles, while rank 0
@@ -16,9 +16,9 @@
 #include <string>
 #include <string_view>
 
-#include "rt2/error.h"
-#include "rt2/image_io.h"
-#include "rt2/io/output_file.h"
+#include "rt2/base/error.h"
+#include "rt2/image/image_io.h"
+#include "rt2/image/output_file.h"
 #include "rt2cpr/failure.h"
 #include "rt2cpr/options.h"
 #include "rt2cpr/report.h"

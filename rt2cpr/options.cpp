@@ -11,9 +11,9 @@
 #include <iostream>
 #include <map>
 
-#include "rt2/error.h"
-#include "rt2/io/output_file.h"
-#include "rt2/version.h"
+#include "rt2/base/error.h"
+#include "rt2/image/output_file.h"
+#include "rt2/base/version.h"
 
 namespace rt2cpr {
 

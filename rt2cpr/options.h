@@ -6,11 +6,11 @@
 #include <string>
 
 #include "rt2/bvh/node.h"
-#include "rt2/isa.h"
-#include "rt2/render.h"
-#include "rt2/scene.h"
-#include "rt2/schedule.h"
-#include "rt2/tonemap.h"
+#include "rt2/base/isa.h"
+#include "rt2/render/renderer.h"
+#include "rt2/scene/scene.h"
+#include "rt2/render/schedule.h"
+#include "rt2/image/tonemap.h"
 
 namespace rt2cpr {
 

@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "rt2/error.h"
-#include "rt2/image_compare.h"
-#include "rt2/version.h"
+#include "rt2/base/error.h"
+#include "rt2/image/image_compare.h"
+#include "rt2/base/version.h"
 
 namespace rt2cpr {
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "rt2/compiled_scene.h"
-#include "rt2/image.h"
-#include "rt2/render.h"
-#include "rt2/schedule.h"
+#include "rt2/render/compiled_scene.h"
+#include "rt2/image/image.h"
+#include "rt2/render/renderer.h"
+#include "rt2/render/schedule.h"
 #include "rt2cpr/options.h"
 #include "rt2cpr/rank_stats.h"
 

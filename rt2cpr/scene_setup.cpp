@@ -1,9 +1,9 @@
 // rt2cpr/scene_setup.cpp — loading and compiling the scene of the options.
 #include "rt2cpr/scene_setup.h"
 
-#include "rt2/builtin_scene.h"
-#include "rt2/error.h"
-#include "rt2/scene_io.h"
+#include "rt2/scene/builtin_scene.h"
+#include "rt2/base/error.h"
+#include "rt2/io/scene_io.h"
 #include "rt2cpr/clock.h"
 
 namespace rt2cpr {

@@ -3,10 +3,10 @@
 // say, and made ready to render from its camera.
 #pragma once
 
-#include "rt2/compiled_scene.h"
-#include "rt2/film.h"
-#include "rt2/render.h"
-#include "rt2/scene.h"
+#include "rt2/render/compiled_scene.h"
+#include "rt2/image/film.h"
+#include "rt2/render/renderer.h"
+#include "rt2/scene/scene.h"
 #include "rt2cpr/options.h"
 
 namespace rt2cpr {

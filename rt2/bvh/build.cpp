@@ -14,7 +14,7 @@
 #include <limits>
 
 #include "mlib/huge_pages.h"
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 
 namespace rt2 {
 namespace {

@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "rt2/aabb.h"
+#include "rt2/geometry/aabb.h"
 #include "rt2/bvh/node.h"
 
 namespace rt2 {

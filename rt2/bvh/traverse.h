@@ -13,7 +13,7 @@
 
 #include <utility>
 
-#include "rt2/aabb.h"
+#include "rt2/geometry/aabb.h"
 #include "rt2/bvh/node.h"
 
 namespace rt2 {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "mlib/huge_pages.h"
-#include "rt2/aabb.h"
+#include "rt2/geometry/aabb.h"
 #include "rt2/bvh/node.h"
 #include "rt2/geometry/triangle_block.h"
 

@@ -1,7 +1,7 @@
 // rt2/geometry/plane.h — the plane N·X + D = 0 (thesis 3.5.1).
 #pragma once
 
-#include "rt2/ray.h"
+#include "rt2/geometry/ray.h"
 
 namespace rt2 {
 

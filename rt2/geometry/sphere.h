@@ -20,7 +20,7 @@
 
 #include <cmath>
 
-#include "rt2/ray.h"
+#include "rt2/geometry/ray.h"
 
 namespace rt2 {
 

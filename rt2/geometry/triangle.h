@@ -24,7 +24,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "rt2/ray.h"
+#include "rt2/geometry/ray.h"
 
 namespace rt2 {
 

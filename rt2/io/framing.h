@@ -1,16 +1,16 @@
 // rt2/io/framing.h — a camera and a light placed around a bounding box, for files that
 // bring none (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API: a bare OBJ (rt2::frame_obj) and
+// Part of the implementation of rt2/io/scene_io.h, not an API: a bare OBJ (rt2::frame_obj) and
 // a glTF scene without a camera or without lights (rt2/io/gltf_scene.h) are framed the same
 // way, from the box's centre and R, half its diagonal.
 #pragma once
 
 #include <string>
 
-#include "rt2/aabb.h"
-#include "rt2/camera.h"
-#include "rt2/light.h"
+#include "rt2/geometry/aabb.h"
+#include "rt2/scene/camera.h"
+#include "rt2/scene/light.h"
 
 namespace rt2::io {
 

@@ -26,7 +26,7 @@
 #include <utility>
 #include <vector>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2/io/framing.h"
 #include "rt2/io/text.h"
 
@@ -777,7 +777,7 @@ void GltfReader::add_light(int node, const tinygltf::Value& ext, const Mat4& wor
 
 // Lights, once the scene's extent is known. glTF gives point and spot lights in candela
 // (lm/sr) with inverse-square falloff, directional lights in lux (lm/m²); rt2's lights have
-// no falloff (rt2/light.h). A point light gets the intensity that gives, everywhere, the
+// no falloff (rt2/scene/light.h). A point light gets the intensity that gives, everywhere, the
 // illuminance the glTF light gives at the scene's centre: I / d², d the distance from the
 // light to the centre of the scene's bounds (at least R, half their diagonal, so that a light
 // inside the scene does not blow up). A directional light becomes a point light 1000 R away

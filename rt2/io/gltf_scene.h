@@ -1,6 +1,6 @@
 // rt2/io/gltf_scene.h — a glTF 2.0 file (.gltf or .glb) into a Scene (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API: rt2::load_scene and
+// Part of the implementation of rt2/io/scene_io.h, not an API: rt2::load_scene and
 // rt2::load_gltf_scene call read_gltf_scene through their `guarded` wrapper, which makes
 // sure that only rt2::Error, with a one-line message, leaves them. tinygltf parses the JSON
 // and the buffers; everything rt2 takes from the parsed model (accessors, node graph,
@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "rt2/scene.h"
+#include "rt2/scene/scene.h"
 
 namespace rt2::io {
 

@@ -1,6 +1,6 @@
 // rt2/io/mtl.h — MTL material libraries, read by rt2 and mapped to Materials (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API. rt2 reads MTL text itself, not
+// Part of the implementation of rt2/io/scene_io.h, not an API. rt2 reads MTL text itself, not
 // through tinyobjloader, which reads `Kd 0.5` as dark red (0.5, 0, 0), turns `Kd red` or
 // `Ns nan` into numbers without a word, and keeps some 2 KB of texture fields per material
 // (2.3 GB for a file of a million materials). read_mtl checks every statement rt2 knows, an
@@ -16,7 +16,7 @@
 #include <string>
 #include <string_view>
 
-#include "rt2/material.h"
+#include "rt2/scene/material.h"
 
 namespace rt2::io {
 

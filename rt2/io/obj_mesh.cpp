@@ -31,7 +31,7 @@
 #include <utility>
 #include <vector>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2/io/mtl.h"
 #include "rt2/io/polygon_triangulation.h"
 #include "rt2/io/text.h"

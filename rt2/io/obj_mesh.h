@@ -1,7 +1,7 @@
 // rt2/io/obj_mesh.h — an OBJ file (and its MTL libraries) into a Mesh (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API: used by rt2::load_obj and
-// rt2::frame_obj (rt2/scene_io.cpp) and by the [[meshes]] of a TOML scene
+// Part of the implementation of rt2/io/scene_io.h, not an API: used by rt2::load_obj and
+// rt2::frame_obj (rt2/io/scene_io.cpp) and by the [[meshes]] of a TOML scene
 // (rt2/io/toml_scene.cpp). The caller reads the OBJ text (read_text_file, at most
 // kMaxObjBytes), so that a missing file is reported in the caller's terms.
 #pragma once
@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <string>
 
-#include "rt2/mesh.h"
-#include "rt2/scene.h"
+#include "rt2/scene/mesh.h"
+#include "rt2/scene/scene.h"
 
 namespace rt2::io {
 
@@ -22,7 +22,7 @@ constexpr std::size_t kMaxObjBytes = 4096ull << 20;  // an OBJ or MTL file
 // MTL libraries are read relative to `path` (a missing one is a warning; none is read when
 // `override_material` >= 0), tinyobjloader parses the OBJ, and polygons are triangulated
 // (a warning names the first that ear clipping gave up on). Face materials and degenerate
-// faces are as rt2::load_obj documents (rt2/scene_io.h), but on an error `scene` may keep
+// faces are as rt2::load_obj documents (rt2/io/scene_io.h), but on an error `scene` may keep
 // materials already added: restoring it is the caller's job. Throws rt2::Error.
 Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,
                  int override_material);

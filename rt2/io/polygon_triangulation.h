@@ -1,7 +1,7 @@
 // rt2/io/polygon_triangulation.h — an OBJ face of any number of corners into triangles
 // (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API: rt2/io/obj_mesh.cpp hands every
+// Part of the implementation of rt2/io/scene_io.h, not an API: rt2/io/obj_mesh.cpp hands every
 // face of more than three corners to a PolygonTriangulator. Quads are split along a diagonal
 // (the shorter one, as tinyobjloader does, unless only the other one lies inside: a concave
 // quad). Larger polygons are ear-clipped in their own plane: the Newell normal picks the
@@ -33,7 +33,7 @@
 #include <utility>
 #include <vector>
 
-#include "rt2/ray.h"
+#include "rt2/geometry/ray.h"
 
 namespace rt2::io {
 

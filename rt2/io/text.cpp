@@ -16,8 +16,8 @@
 #include <system_error>
 #include <vector>
 
-#include "rt2/error.h"
-#include "rt2/scene.h"
+#include "rt2/base/error.h"
+#include "rt2/scene/scene.h"
 
 namespace rt2::io {
 namespace {

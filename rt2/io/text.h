@@ -1,6 +1,6 @@
 // rt2/io/text.h — the message and file helpers shared by the scene loaders (internal).
 //
-// Part of the implementation of rt2/scene_io.h, used only by rt2/scene_io.cpp and rt2/io/;
+// Part of the implementation of rt2/io/scene_io.h, used only by rt2/io/scene_io.cpp and rt2/io/;
 // not an API. Every message the loaders produce is built here: one line, starting with
 // "file", "file:line" or "file:line:column", numbers in shortest round-trip form, with a
 // "did you mean" hint for a misspelt key or name. Files are read whole, with a size limit

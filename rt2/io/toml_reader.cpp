@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 
 namespace rt2::io {
 

@@ -1,6 +1,6 @@
 // rt2/io/toml_reader.h — typed, range-checked values from a parsed TOML table (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API. Reader wraps one toml++ table
+// Part of the implementation of rt2/io/scene_io.h, not an API. Reader wraps one toml++ table
 // of a scene file: it refuses unknown keys up front (with a "did you mean" hint), fetches
 // numbers and 3-vectors within a Limit, strings and sub-tables, and fails with a one-line
 // rt2::Error naming the file, the line and column and the key path ("spheres[1].radius").
@@ -16,7 +16,7 @@
 #include <utility>
 
 #include "rt2/io/text.h"
-#include "rt2/ray.h"
+#include "rt2/geometry/ray.h"
 
 namespace rt2::io {
 

@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2/io/obj_mesh.h"
 #include "rt2/io/text.h"
 #include "rt2/io/toml_reader.h"

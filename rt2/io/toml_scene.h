@@ -1,6 +1,6 @@
 // rt2/io/toml_scene.h — a TOML scene file into a Scene (internal).
 //
-// Part of the implementation of rt2/scene_io.h, not an API: rt2::load_scene and
+// Part of the implementation of rt2/io/scene_io.h, not an API: rt2::load_scene and
 // rt2::load_toml_scene call read_toml_scene through their `guarded` wrapper, which makes
 // sure that only rt2::Error, with a one-line message, leaves them. The format is documented
 // in scenes/FORMAT.md.
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "rt2/scene.h"
+#include "rt2/scene/scene.h"
 
 namespace rt2::io {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/mpi/calls.h"
 #include "rt2cpr/mpi/protocol.h"
 

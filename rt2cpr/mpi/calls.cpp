@@ -3,7 +3,7 @@
 
 #include <thread>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 
 namespace rt2cpr::mpi {
 

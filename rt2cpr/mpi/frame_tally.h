@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "rt2/render.h"
+#include "rt2/render/renderer.h"
 
 namespace rt2cpr::mpi {
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <thread>
 
-#include "rt2/error.h"
-#include "rt2/schedule.h"
+#include "rt2/base/error.h"
+#include "rt2/render/schedule.h"
 #include "rt2cpr/clock.h"
 #include "rt2cpr/mpi/calls.h"
 #include "rt2cpr/mpi/protocol.h"

@@ -18,7 +18,7 @@
 #include <optional>
 #include <string>
 
-#include "rt2/image.h"
+#include "rt2/image/image.h"
 #include "rt2cpr/failure.h"
 #include "rt2cpr/mpi/agreement.h"
 #include "rt2cpr/mpi/session.h"

@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "rt2/tile.h"
+#include "rt2/render/tile.h"
 
 namespace rt2cpr::mpi {
 

@@ -16,9 +16,9 @@
 #include <thread>
 #include <vector>
 
-#include "rt2/film.h"
-#include "rt2/render.h"
-#include "rt2/schedule.h"
+#include "rt2/image/film.h"
+#include "rt2/render/renderer.h"
+#include "rt2/render/schedule.h"
 #include "rt2cpr/mpi/frame_tally.h"
 #include "rt2cpr/mpi/protocol.h"
 

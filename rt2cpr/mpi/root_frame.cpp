@@ -6,7 +6,7 @@
 #include <optional>
 #include <thread>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/clock.h"
 #include "rt2cpr/mpi/protocol.h"
 #include "rt2cpr/mpi/sender.h"

@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "rt2/image.h"
+#include "rt2/image/image.h"
 #include "rt2cpr/mpi/calls.h"
 #include "rt2cpr/mpi/frame_tally.h"
 #include "rt2cpr/mpi/render_team.h"

@@ -29,7 +29,7 @@ class StopNotice {
   StopNotice& operator=(const StopNotice&) = delete;
 
   // SIGTERM back to its default: while the outputs are written, the handler of
-  // rt2/io/output_file.h removes a half-written file instead.
+  // rt2/image/output_file.h removes a half-written file instead.
   void release();
 
  private:

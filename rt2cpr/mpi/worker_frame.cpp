@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/mpi/channel.h"
 #include "rt2cpr/mpi/protocol.h"
 #include "rt2cpr/mpi/sender.h"

@@ -3,8 +3,8 @@
 
 #include <cstdlib>
 
-#include "rt2/error.h"
-#include "rt2/supersampling.h"
+#include "rt2/base/error.h"
+#include "rt2/render/supersampling.h"
 
 namespace rt2cpr::viewer {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "rt2/render.h"
-#include "rt2/schedule.h"
+#include "rt2/render/renderer.h"
+#include "rt2/render/schedule.h"
 
 namespace rt2cpr::viewer {
 

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "rt2/camera.h"
+#include "rt2/scene/camera.h"
 
 namespace rt2cpr::viewer {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <thread>
 
-#include "rt2/supersampling.h"
+#include "rt2/render/supersampling.h"
 
 namespace rt2cpr::viewer {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "rt2/isa.h"
-#include "rt2/render.h"
+#include "rt2/base/isa.h"
+#include "rt2/render/renderer.h"
 #include "rt2cpr/viewer/controls.h"
 
 namespace rt2cpr::viewer {

@@ -6,8 +6,8 @@
 #include <new>
 #include <utility>
 
-#include "rt2/display_pixels.h"
-#include "rt2/error.h"
+#include "rt2/image/display_pixels.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/scene_setup.h"
 
 namespace rt2cpr::viewer {

@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 
 namespace rt2cpr::viewer {
 

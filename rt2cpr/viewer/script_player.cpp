@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/viewer/controls.h"
 
 namespace rt2cpr::viewer {

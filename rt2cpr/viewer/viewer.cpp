@@ -22,10 +22,10 @@
 #include <optional>
 #include <vector>
 
-#include "rt2/error.h"
-#include "rt2/image_io.h"
-#include "rt2/io/output_file.h"
-#include "rt2/srgb.h"
+#include "rt2/base/error.h"
+#include "rt2/image/image_io.h"
+#include "rt2/image/output_file.h"
+#include "rt2/image/srgb.h"
 #include "rt2cpr/scene_setup.h"
 #include "rt2cpr/viewer/controls.h"
 #include "rt2cpr/viewer/fly_camera.h"

@@ -1,6 +1,6 @@
 // rt2cpr/viewer/viewer_missing.cpp — the viewer of an rt2cpr built without SDL2 or Dear
 // ImGui (SCons compiles this file instead of viewer.cpp then).
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/viewer/viewer.h"
 
 namespace rt2cpr::viewer {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "rt2/error.h"
-#include "rt2/srgb.h"
+#include "rt2/base/error.h"
+#include "rt2/image/srgb.h"
 
 namespace rt2cpr::viewer {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <string>
 
-#include "rt2/image.h"
+#include "rt2/image/image.h"
 #include "rt2cpr/viewer/render_worker.h"
 
 namespace rt2cpr::viewer {

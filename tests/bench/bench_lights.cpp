@@ -1,4 +1,4 @@
-// bench_lights: the light tree (rt2/light_bvh.h) rebuilt every frame for N moving lights, as
+// bench_lights: the light tree (rt2/lights/light_bvh.h) rebuilt every frame for N moving lights, as
 // --animate-lights does: the time of each step (one pass moving the lights along their paths
 // and taking their bounds, the Morton codes, the radix sort, the tree) at each thread count,
 // median / min /
@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "rt2/light_bvh.h"
-#include "rt2/light_field.h"
-#include "rt2/light_path.h"
+#include "rt2/lights/light_bvh.h"
+#include "rt2/scene/light_field.h"
+#include "rt2/scene/light_path.h"
 #include "tests/bench/bench_util.h"
 
 namespace {

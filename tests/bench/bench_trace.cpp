@@ -1,4 +1,4 @@
-// bench_trace — rays per second of rt2's batch queries (rt2/trace.h) on one OBJ mesh, and,
+// bench_trace — rays per second of rt2's batch queries (rt2/render/trace.h) on one OBJ mesh, and,
 // when built with Debian's libembree-dev (RT2_HAVE_EMBREE), of Embree 3 on the same
 // triangles and the same ray arrays, interleaved run by run.
 //
@@ -51,7 +51,7 @@
 //   engine=rt2       trace_closest / trace_occluded over each chunk;
 //   engine=rt2_packets  trace_closest_packets / trace_occluded_packets, one packet per
 //                    4 x 4 tile (primary and shadow only): the packet walk of
-//                    rt2/bvh/packet_traverse.h. Its answers must equal engine=rt2's bit
+//                    rt2/kernel/packet_traverse.h. Its answers must equal engine=rt2's bit
 //                    for bit (t, u, v, triangle): `differences` counts the rays where
 //                    they do not; `rays_in_packets` the rays per set ray walked in a
 //                    packet (the rest fell back to single rays);
@@ -118,12 +118,12 @@
 #include <vector>
 
 #include "mlib/fpmode.h"
-#include "rt2/error.h"
-#include "rt2/isa.h"
-#include "rt2/offset.h"
-#include "rt2/scene_io.h"
-#include "rt2/trace.h"
-#include "rt2/version.h"
+#include "rt2/base/error.h"
+#include "rt2/base/isa.h"
+#include "rt2/geometry/offset.h"
+#include "rt2/io/scene_io.h"
+#include "rt2/render/trace.h"
+#include "rt2/base/version.h"
 #include "tests/bench/bench_util.h"
 #include "tests/bench/face_locator.h"
 #include "tests/bench/trace_runner.h"

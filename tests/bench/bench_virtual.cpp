@@ -63,7 +63,7 @@
 #include "rt2/geometry/plane.h"
 #include "rt2/geometry/sphere.h"
 #include "rt2/geometry/triangle.h"
-#include "rt2/ray.h"
+#include "rt2/geometry/ray.h"
 
 namespace {
 

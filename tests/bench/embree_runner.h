@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "rt2/mesh.h"
+#include "rt2/scene/mesh.h"
 #include "tests/bench/trace_runner.h"
 
 namespace bench {

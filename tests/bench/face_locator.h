@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rt2/mesh.h"
+#include "rt2/scene/mesh.h"
 
 namespace bench {
 

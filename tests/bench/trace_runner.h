@@ -4,7 +4,7 @@
 // A Runner is an engine's body over work units [begin, end) (rays, or 16-ray tiles for
 // packets) that writes the engine's answers for those units; run_chunks calls it from a
 // oneTBB task_arena of a given thread count. rt2's runner talks to rt2 only through the
-// batch queries of rt2/trace.h.
+// batch queries of rt2/render/trace.h.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "mlib/fpmode.h"
-#include "rt2/trace.h"
+#include "rt2/render/trace.h"
 
 namespace bench {
 

@@ -21,8 +21,8 @@
 #include <string>
 #include <string_view>
 
-#include "rt2/error.h"
-#include "rt2/scene_io.h"
+#include "rt2/base/error.h"
+#include "rt2/io/scene_io.h"
 
 namespace rt2::fuzz {
 

@@ -2,7 +2,7 @@
 """tests/hostile/generate.py — writes the hostile loader inputs of tests/hostile/.
 
 Each case is a scene or mesh (and the OBJ/MTL files it names, <case>.obj, <case>.mtl) plus
-<case>.expect, the outcome tests/rt2/hostile_test.cpp checks (format in README.md). The cases
+<case>.expect, the outcome tests/rt2/io/hostile_test.cpp checks (format in README.md). The cases
 are made here rather than by hand because many are binary, huge or repetitive (UTF-16, NUL
 bytes, 5000-deep nesting, 100 000 spheres, 1 MB lines); the files are committed, so the test
 needs no Python. Run it from anywhere after changing a case: it rewrites every case file
@@ -541,7 +541,7 @@ def mtl_values():
 # ---- size ---------------------------------------------------------------------------------
 
 def sizes():
-    # These inputs are megabytes: the files are not committed. tests/rt2/hostile_test.cpp
+    # These inputs are megabytes: the files are not committed. tests/rt2/io/hostile_test.cpp
     # writes them (same contents as described here) into a temporary folder when a case
     # loads "generated/<file>"; see make_generated() there.
     #   spheres_100000.toml:         CAMERA, material m, 100 000 spheres of radius 0.4

@@ -21,8 +21,8 @@
 #include <thread>
 #include <vector>
 
-#include "rt2/image_io.h"
-#include "tests/rt2/cli_fixture.h"
+#include "rt2/image/image_io.h"
+#include "tests/rt2cpr/cli_fixture.h"
 
 namespace rt2::test {
 namespace {

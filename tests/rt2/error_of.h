@@ -7,7 +7,7 @@
 #include <exception>
 #include <string>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 
 namespace rt2::test {
 

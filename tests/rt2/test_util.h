@@ -6,12 +6,12 @@
 #include <random>
 #include <vector>
 
-#include "rt2/accel.h"
-#include "rt2/builtin_scene.h"
-#include "rt2/compiled_scene.h"
-#include "rt2/isa.h"
-#include "rt2/schedule.h"
-#include "rt2/scene.h"
+#include "rt2/bvh/accel.h"
+#include "rt2/scene/builtin_scene.h"
+#include "rt2/render/compiled_scene.h"
+#include "rt2/base/isa.h"
+#include "rt2/render/schedule.h"
+#include "rt2/scene/scene.h"
 
 namespace rt2::test {
 

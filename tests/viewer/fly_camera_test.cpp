@@ -10,8 +10,8 @@
 #include <cstring>
 #include <random>
 
-#include "rt2/builtin_scene.h"
-#include "rt2/scene_io.h"
+#include "rt2/scene/builtin_scene.h"
+#include "rt2/io/scene_io.h"
 #include "tests/rt2/temp_dir.h"
 
 namespace rt2cpr::viewer {

@@ -9,9 +9,9 @@
 #include <regex>
 #include <string>
 
-#include "rt2/image_io.h"
-#include "rt2/srgb.h"
-#include "tests/rt2/cli_fixture.h"
+#include "rt2/image/image_io.h"
+#include "rt2/image/srgb.h"
+#include "tests/rt2cpr/cli_fixture.h"
 
 namespace {
 

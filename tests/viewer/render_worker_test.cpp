@@ -11,7 +11,7 @@
 #include <cstring>
 #include <mutex>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "rt2cpr/scene_setup.h"
 #include "rt2cpr/viewer/fly_camera.h"
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "rt2/error.h"
+#include "rt2/base/error.h"
 #include "tests/rt2/error_of.h"
 #include "tests/rt2/temp_dir.h"
 

@@ -1,0 +1,76 @@
+// rt2/image/film.h — where samples accumulate: per pixel, the running sum of its samples'
+// colours (with Kahan's compensation, so 1,024 samples average to within an ulp) and how
+// many samples it holds.
+//
+// A frame is rendered in passes, each adding a range of every pixel's samples in the order
+// of their index; the film keeps the sum and its compensation between passes, so
+// `--subpixels 8 --passes 8` adds the same values in the same order as one pass of 8 and
+// gives the same bits. Pixels are independent: tiles and threads write disjoint pixels.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rt2/image/image.h"
+#include "rt2/geometry/ray.h"
+#include "rt2/render/tile.h"
+
+namespace rt2 {
+
+class Film {
+ public:
+  Film() = default;
+  // A film of width x height pixels holding no sample (check_image_fits first).
+  Film(int width, int height);
+
+  // Drops every sample (keeps the memory, for the next frame).
+  void clear();
+  // Drops the samples of the pixels of `tile` only.
+  void clear(const Tile& tile);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Samples pixel (x, y) holds.
+  std::uint32_t samples(int x, int y) const { return samples_[index(x, y)]; }
+
+  // Adds one sample's colour (lanes x y z) to pixel (x, y).
+  MLIB_INLINE void add(int x, int y, const vec4& color) {
+    const std::size_t i = index(x, y);
+    // Compensated (Kahan) summation, as the renderer has always averaged its subpixels.
+    const vec4 y_ = color - carry_[i];
+    const vec4 t = sum_[i] + y_;
+    carry_[i] = (t - sum_[i]) - y_;
+    sum_[i] = t;
+    ++samples_[i];
+  }
+
+  // Asks for the state of the pixels in columns [x0, x1) of rows [y0, y1) to be brought
+  // into the caches, ahead of adding to them (a hint: the film of a frame is larger than
+  // the caches, and a block's rays take long enough to hide the fetch).
+  void prefetch(int x0, int y0, int x1, int y1) const {
+    const int lines = ((x1 - x0) * int(sizeof(vec4)) + 63) / 64 + 1;
+    for (int y = y0; y < y1; ++y) {
+      mlib::prefetch(&sum_[index(x0, y)], lines);
+      mlib::prefetch(&carry_[index(x0, y)], lines);
+      mlib::prefetch(&samples_[index(x0, y)], 2);
+    }
+  }
+
+  // The mean of each pixel's samples, into `image` (resized); a pixel without samples is
+  // black. A mean that is NaN or infinite (never expected) is written as black and counted
+  // in the return value.
+  std::uint64_t resolve(Image& image) const;
+  // The same means for the pixels of `tile` alone, into `rgb`: 3 floats per pixel, row by
+  // row (tile.pixels() x 3 floats); the same bits as resolve(Image&) gives them.
+  std::uint64_t resolve(const Tile& tile, float* rgb) const;
+
+ private:
+  // Pixel i's mean into rgb[0..2]; false (and black) when it is NaN or infinite.
+  bool mean(std::size_t i, float* rgb) const;
+  std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width_) + std::size_t(x); }
+  int width_ = 0, height_ = 0;
+  std::vector<vec4> sum_, carry_;
+  std::vector<std::uint32_t> samples_;
+};
+
+}  // namespace rt2

@@ -1,0 +1,59 @@
+// rt2/image/image_codec.h — encoding and decoding image files: the seam between rt2 and
+// OpenImageIO, which rt2 loads only when an image is read or written.
+//
+// Why a plugin: libOpenImageIO pulls in ~260 shared libraries (ffmpeg, gdal, log4cplus, …)
+// whose loading and static initialisers cost ~0.25 s and ~130 MB of address space before
+// main, even for `rt2cpr --help` or a render that writes no image (under `ulimit -v 400000`
+// the program could not start at all). So the one file that includes OIIO,
+// image_codec_oiio.cpp, is built as the shared library lib/librt2_image_codec.so beside
+// bin/, and image_codec() opens it with dlopen the first time a codec is needed.
+//
+// The codec works on bytes in memory (OIIO's IOProxy): it never touches the output file,
+// so a full disk cannot abort it inside a format library; rt2/image/output_file.h writes the
+// bytes. Functions return "" on success or a one-line reason; no exception crosses the
+// library boundary.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rt2 {
+
+struct ImageCodec {
+  // "" when files with this extension (".png") can be encoded, else why not.
+  std::string (*can_encode)(const std::string& extension);
+  // Encodes width x height RGB float pixels into the format of `extension`: as 32-bit
+  // floats when `as_float`, else as 8-bit values (clamped to [0, 1], rounded), tagged with
+  // the colour space `color_space` ("sRGB" or "Linear"); the file's bytes go to `bytes`.
+  std::string (*encode)(const std::string& extension, const float* rgb, int width, int height,
+                        bool as_float, const std::string& color_space, std::string& bytes);
+  // Decodes the image file `path` into RGB floats (extra channels dropped, grey replicated)
+  // as stored; `srgb` says whether the values are sRGB-encoded (8- or 16-bit files not
+  // tagged linear) rather than linear.
+  std::string (*decode)(const std::string& path, std::vector<float>& rgb, int& width,
+                        int& height, bool& srgb);
+
+  // Textures through OIIO's TextureSystem (rt2/shading/texture.h): mip-mapped (made on first use
+  // for files that have no mip levels), tiled and cached, filtered over a footprint.
+  // OIIO's shared system (see image_codec_oiio.cpp for why); texture_system_destroy lets go
+  // of it.
+  void* (*texture_system_create)();
+  void (*texture_system_destroy)(void* system);
+  // A handle for the image file `path`, checked to open, and its channel count; nullptr and
+  // `why` when it cannot be opened.
+  void* (*texture_open)(void* system, const std::string& path, int& channels, std::string& why);
+  // The filtered RGB at texture coordinates (s, t) (OIIO's: (0, 0) the top-left corner,
+  // repeating), with the footprint's derivatives along the image's x and y; a grey image
+  // (channels < 3) is replicated. Thread-safe.
+  void (*texture_sample)(void* system, void* handle, int channels, float s, float t, float dsdx,
+                         float dtdx, float dsdy, float dtdy, float* rgb);
+};
+
+// The codec, loaded on the first call (thread-safe). Throws rt2::Error when the library
+// cannot be loaded.
+const ImageCodec& image_codec();
+
+}  // namespace rt2
+
+// The plugin's one exported symbol.
+extern "C" const rt2::ImageCodec* rt2_image_codec();

@@ -1,0 +1,39 @@
+// rt2/image/image_io.h — image files: writing rendered frames and reading reference images.
+//
+// The format follows the file name's extension (.png, .exr, .ppm, .jpg, .tif, .hdr, and
+// whatever else the codec can write to memory). Float formats (.exr, .hdr, .tif) store the
+// renderer's linear RGB values as they are. Display formats (.png, .jpg, .ppm and every
+// other 8-bit format) store sRGB-encoded values (rt2/image/srgb.h), clamped to [0, 1] and
+// rounded to 8 bits, and are tagged sRGB; before the encoding, a Display (tonemap.h) maps
+// them through an exposure and a tone curve (the default, none, leaves them as they are). Reading undoes the encoding, so a reference image
+// is compared in linear values whatever its format.
+//
+// Images are encoded in memory (rt2/image/image_codec.h, OpenImageIO loaded on first use) and
+// written by rt2/image/output_file.h: the file appears complete or not at all.
+#pragma once
+
+#include <string>
+
+#include "rt2/image/image.h"
+#include "rt2/image/tonemap.h"
+
+namespace rt2 {
+
+// Checks, before any rendering, that `path` can be written: the target is acceptable to
+// rt2::io::check_output_path, and its extension names a format the codec can write.
+// Throws rt2::Error naming the problem otherwise.
+void check_writable_image(const std::string& path);
+
+// True for the formats that store linear float values (.exr, .hdr, .tif, .tiff).
+bool is_linear_format(const std::string& path);
+
+// Writes the linear RGB `image` as above. Throws rt2::Error "cannot write PATH: reason" on
+// any failure, leaving no file (and no temporary file) behind.
+// Display formats take `display`'s exposure and curve first; float formats ignore it.
+void write_image(const std::string& path, const Image& image, const Display& display = {});
+
+// Reads the regular file `path` (not a device or pipe, which may never end) as linear RGB
+// floats. Throws rt2::Error "PATH: reason" when it cannot.
+Image read_image(const std::string& path);
+
+}  // namespace rt2

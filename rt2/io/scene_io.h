@@ -1,0 +1,54 @@
+// rt2/io/scene_io.h — loading scenes: TOML scene files (toml++), OBJ/MTL meshes
+// (tinyobjloader) and glTF 2.0 scenes (.gltf, .glb; tinygltf).
+//
+// The scene format and the MTL → Material mapping are documented in scenes/FORMAT.md. Every
+// problem in the input — a missing file, a syntax error, an unknown key, a value out of
+// range, a bad face index — is reported by throwing rt2::Error with a one-line message that
+// starts with the file and, where there is one, the line and column:
+//   scenes/x.toml:12:10: spheres[1].radius must be > 0 (got -1)
+//   scenes/room.obj:7: face references vertex 9, but only 8 vertices are defined
+// No other exception escapes these functions, and the loaded scene has passed
+// Scene::validate(). Non-fatal problems (a missing MTL library) are printed to stderr as one
+// `warning: ...` line each.
+#pragma once
+
+#include <string>
+
+#include "rt2/base/error.h"
+#include "rt2/scene/mesh.h"
+#include "rt2/scene/scene.h"
+
+namespace rt2 {
+
+// Loads `path` by its extension (any case): a .toml scene file, a bare .obj mesh which is
+// framed automatically, or a .gltf/.glb glTF 2.0 scene. Throws rt2::Error with a one-line
+// message on any problem.
+Scene load_scene(const std::string& path);
+
+// Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
+Scene load_toml_scene(const std::string& path);
+
+// Reads a TOML file holding only a `[camera]` table (scenes/FORMAT.md; the block the
+// interactive viewer prints with `C`): the camera it describes.
+Camera load_camera(const std::string& path);
+
+// Loads a glTF 2.0 scene, JSON (.gltf) or binary (.glb), told apart by its content
+// (scenes/FORMAT.md: what is read and how it maps). Without a camera or without lights it is
+// framed as frame_obj frames an OBJ (no ground plane). Buffer and image files are relative
+// to its folder; images are not decoded here (TextureDesc).
+Scene load_gltf_scene(const std::string& path);
+
+// A bare OBJ, framed: camera from its bounding box (looking at the centre from the front,
+// slightly above, the whole box in view), one white light above-front, a ground plane with a
+// checker material just under the box (R / 1000 below it, R half the box's diagonal), MTL
+// materials or a default grey material.
+Scene frame_obj(const std::string& obj_path);
+
+// Reads an OBJ (and its MTL libraries) through tinyobjloader into a Mesh. Each face's material
+// is `override_material` when >= 0, else the MTL material (added to `scene`; name
+// "<objfile>:<mtlname>"), else a default material (added once, name "default"). Degenerate
+// faces (zero/non-finite area) are dropped and added to scene.degenerate_triangles. Positions
+// and normals get w = 0. On an error `scene` is left as it was.
+Mesh load_obj(const std::string& path, Scene& scene, int override_material = -1);
+
+}  // namespace rt2

@@ -1,0 +1,82 @@
+// rt2/render/compiled_scene.cpp — compiling a Scene (see compiled_scene.h).
+#include "rt2/render/compiled_scene.h"
+
+#include <chrono>
+#include <utility>
+
+#include "rt2/shading/brdf_lut.h"
+#include "rt2/image/image_io.h"
+
+namespace rt2 {
+
+CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config, Isa isa) {
+  scene.validate();
+  using Clock = std::chrono::steady_clock;
+  const auto ms_since = [](Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  };
+  CompiledScene c;
+  Clock::time_point t = Clock::now();
+  c.accel = Accel::build(scene, config, isa);
+  c.times.accel_ms = ms_since(t);
+  c.materials = scene.materials;
+  // Shadow rays pass physically based materials by their transmission (query.h reads
+  // `transparency`; the pbr shading step never does).
+  bool pbr = false;
+  for (Material& m : c.materials)
+    if (m.model == Shading::pbr) {
+      m.transparency = m.transmission * (1.0f - m.metallic);
+      pbr = true;
+    }
+  t = Clock::now();
+  if (pbr) split_sum(0.5f, 0.5f);  // the table is made here, not in the first frame
+  c.pbr_surfaces.resize(c.materials.size());
+  for (std::size_t i = 0; i < c.materials.size(); ++i)
+    if (const Material& m = c.materials[i]; m.model == Shading::pbr)
+      c.pbr_surfaces[i] = pbr_surface(m.base_color, m.metallic, m.roughness, m.transmission);
+  c.times.brdf_table_ms = ms_since(t);
+  c.plain_phong.resize(c.materials.size());
+  for (std::size_t i = 0; i < c.materials.size(); ++i) {
+    const Material& m = c.materials[i];
+    c.plain_phong[i] = m.plain_phong();
+    if (m.transparency > 0.0f || m.model == Shading::pbr) c.one_ray_per_sample = false;
+  }
+  t = Clock::now();
+  c.textures = TextureSet(scene.textures);
+  c.times.textures_ms = ms_since(t);
+  t = Clock::now();
+  if (scene.environment) {
+    const EnvironmentDesc& e = *scene.environment;
+    if (e.image.empty()) {
+      c.environment = Environment::sky(e.sun_direction, e.intensity, e.rotation_degrees);
+    } else {
+      Image img = read_image(e.image);
+      c.environment = Environment::from_image(img.width, img.height, std::move(img.rgb),
+                                              e.intensity, e.rotation_degrees);
+    }
+    c.has_environment = true;
+  } else {
+    c.environment = Environment::uniform(scene.ambient);
+  }
+  c.times.environment_ms = ms_since(t);
+  c.lights = scene.lights;
+  c.ambient = scene.ambient;
+  c.background = scene.background;
+  c.origin = scene.origin;
+  c.offset_scale = scene.size();
+  c.features = scene.features();
+  c.light_paths.reserve(c.lights.size());
+  for (std::size_t i = 0; i < c.lights.size(); ++i) {
+    c.light_paths.emplace_back(c.lights[i], i, c.offset_scale);
+    if (c.lights[i].has_range()) c.light_path_bounds.grow(c.light_paths.back().bounds());
+  }
+  c.light_bvh.build(c.lights, 0);
+  return c;
+}
+
+LightBvh::BuildTimes CompiledScene::move_lights(double seconds, int threads) {
+  return light_bvh.move_and_build(lights, light_paths, LightPath::turn(seconds),
+                                  light_path_bounds, threads);
+}
+
+}  // namespace rt2

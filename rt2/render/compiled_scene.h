@@ -1,0 +1,73 @@
+// rt2/render/compiled_scene.h — a scene made ready to render: built once, then only read, by any
+// number of threads and frames.
+//
+// A Scene (scene.h) is the description a loader fills: a camera, materials, lights and
+// geometry as the file gave them. Compiling it moves what rendering needs into one owner:
+// the geometry in trace order with its acceleration structures (Accel: planes, the spheres'
+// tree, the triangles' wide tree for the chosen instruction set), the materials, the
+// lights and the constants of shading. The camera is not part of it: where to look from,
+// at what size and with which settings is the View (view.h), chosen per frame.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "rt2/bvh/accel.h"
+#include "rt2/shading/brdf.h"
+#include "rt2/shading/environment.h"
+#include "rt2/scene/light.h"
+#include "rt2/lights/light_bvh.h"
+#include "rt2/scene/light_path.h"
+#include "rt2/scene/material.h"
+#include "rt2/scene/scene.h"
+#include "rt2/shading/texture.h"
+
+namespace rt2 {
+
+struct CompiledScene {
+  Accel accel;
+  std::vector<Material> materials;
+  // Per material, its physically based surface (brdf.h) when it is pbr and has no texture
+  // (the same at every point: prepared once here instead of per shaded point).
+  std::vector<PbrSurface> pbr_surfaces;
+  // Per material, Material::plain_phong() (1 or 0): read per hit by the shading lanes.
+  std::vector<std::uint8_t> plain_phong;
+  // Whether no hit can spawn two secondary rays (no transparent Phong material, refracting
+  // and reflecting; no physically based one, transmitting and reflecting): then a batch of
+  // the render kernel holds at most one ray per sample.
+  bool one_ray_per_sample = true;
+  std::vector<Light> lights;             // where they are this frame
+  LightBvh light_bvh;                    // over `lights`' spheres of influence
+  std::vector<LightPath> light_paths;    // where move_lights takes each light
+  Aabb light_path_bounds;                // a box holding the paths of the lights with a range
+  vec4 ambient;     // I_amb
+  vec4 background;  // colour of rays that hit nothing, without an environment
+  TextureSet textures;  // Scene::textures, opened
+  // The light from far away (Scene::environment), prefiltered; without one, a uniform
+  // environment of the ambient colour (physically based materials' ambient light), and
+  // rays that miss take `background`.
+  Environment environment = Environment::uniform(vec4(0.0f, 0.0f, 0.0f));
+  bool has_environment = false;
+  vec4 origin;      // where these coordinates' origin is in the world (Scene::origin)
+  float offset_scale = 1.0f;  // the scene's size, for secondary-ray origins (offset.h)
+  unsigned features = 0;      // features.h, for reports
+
+  // What compiling took, for reports (ms): the trees, the BRDF table (brdf_lut.h; made
+  // once per process, 0 without physically based materials or when made before), opening
+  // the textures, and loading and prefiltering the environment.
+  struct Times {
+    double accel_ms = 0, brdf_table_ms = 0, textures_ms = 0, environment_ms = 0;
+  } times;
+
+  // Validates `scene` (Scene::validate) and compiles it: the trees with `config`, the
+  // triangles' `bvh_width(isa)` wide; opens its textures and loads and prefilters its
+  // environment (throws rt2::Error "FILE: reason" when one cannot be read).
+  static CompiledScene compile(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
+
+  // Moves every light to where its path is at `seconds` (light_path.h) and rebuilds
+  // the light tree with `threads` OpenMP threads (<= 0: all). Lights are the one part of a
+  // compiled scene that changes between frames; never call it while a frame renders.
+  LightBvh::BuildTimes move_lights(double seconds, int threads);
+};
+
+}  // namespace rt2

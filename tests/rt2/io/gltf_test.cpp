@@ -1,0 +1,384 @@
+// tests/rt2/io/gltf_test.cpp — glTF 2.0 loading (rt2/io/gltf_scene.h through rt2::load_scene):
+// small files written by the tests (GltfFile below builds their buffers and accessors), as
+// JSON with an embedded base64 buffer and as binary .glb; and every glTF file of Debian's
+// assimp-testmodels, each of which must load or fail with one rt2::Error line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rt2/base/error.h"
+#include "rt2/io/scene_io.h"
+#include "tests/rt2/error_of.h"
+#include "tests/rt2/temp_dir.h"
+
+namespace rt2 {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string base64(const std::string& bytes) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const auto a = std::uint8_t(bytes[i]), b = std::uint8_t(bytes[i + 1]),
+               c = std::uint8_t(bytes[i + 2]);
+    out += {k[a >> 2], k[((a & 3) << 4) | (b >> 4)], k[((b & 15) << 2) | (c >> 6)], k[c & 63]};
+  }
+  if (i + 1 == bytes.size()) {
+    const auto a = std::uint8_t(bytes[i]);
+    out += {k[a >> 2], k[(a & 3) << 4], '=', '='};
+  } else if (i + 2 == bytes.size()) {
+    const auto a = std::uint8_t(bytes[i]), b = std::uint8_t(bytes[i + 1]);
+    out += {k[a >> 2], k[((a & 3) << 4) | (b >> 4)], k[(b & 15) << 2], '='};
+  }
+  return out;
+}
+
+// A glTF file under construction: one buffer, a buffer view and an accessor per array.
+class GltfFile {
+ public:
+  // Appends `values` (4-byte aligned) and returns the new accessor's index.
+  template <class T>
+  int accessor(const std::vector<T>& values, int component_type, const std::string& type,
+               std::size_t count, bool normalized = false) {
+    const std::size_t offset = bin_.size();
+    bin_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    while (bin_.size() % 4) bin_ += '\0';
+    const int index = int(accessors_.size());
+    views_.push_back(R"({"buffer":0,"byteOffset":)" + std::to_string(offset) + R"(,"byteLength":)" +
+                     std::to_string(values.size() * sizeof(T)) + "}");
+    accessors_.push_back(R"({"bufferView":)" + std::to_string(index) + R"(,"componentType":)" +
+                         std::to_string(component_type) + R"(,"count":)" + std::to_string(count) +
+                         R"(,"type":")" + type + "\"" +
+                         (normalized ? R"(,"normalized":true)" : "") + "}");
+    return index;
+  }
+  int floats(const std::vector<float>& v, const std::string& type, std::size_t per) {
+    return accessor(v, 5126, type, v.size() / per);
+  }
+
+  // The JSON, with `rest` (more top-level members, starting with a comma; without "nodes",
+  // one node of mesh 0 is added) and the buffer as a data: URI (or, `glb`, without a URI:
+  // the GLB's binary chunk).
+  std::string json(std::string rest, bool glb = false) const {
+    if (rest.find("\"nodes\"") == std::string::npos)
+      rest += R"(,"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])";
+    std::string s =
+        R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":)" + std::to_string(bin_.size()) +
+        (glb ? "" : R"(,"uri":"data:application/octet-stream;base64,)" + base64(bin_) + "\"") +
+        R"(}],"bufferViews":[)";
+    for (std::size_t i = 0; i < views_.size(); ++i) s += (i ? "," : "") + views_[i];
+    s += R"(],"accessors":[)";
+    for (std::size_t i = 0; i < accessors_.size(); ++i) s += (i ? "," : "") + accessors_[i];
+    return s + "]" + rest + "}";
+  }
+
+  // The binary form: header, JSON chunk (space-padded), BIN chunk (zero-padded).
+  std::string glb(const std::string& rest) const {
+    std::string j = json(rest, true);
+    while (j.size() % 4) j += ' ';
+    std::string b = bin_;
+    while (b.size() % 4) b += '\0';
+    const auto u32 = [](std::size_t v) {
+      const auto x = std::uint32_t(v);
+      std::string s(4, '\0');
+      std::memcpy(s.data(), &x, 4);
+      return s;
+    };
+    return "glTF" + u32(2) + u32(12 + 8 + j.size() + 8 + b.size()) + u32(j.size()) + "JSON" + j +
+           u32(b.size()) + "BIN" + std::string(1, '\0') + b;
+  }
+
+ private:
+  std::string bin_;
+  std::vector<std::string> views_, accessors_;
+};
+
+// A triangle (0,0,0), (1,0,0), (0,1,0) with normals +z and texture coordinates.
+GltfFile triangle() {
+  GltfFile f;
+  f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);  // accessor 0: POSITION
+  f.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);  // accessor 1: NORMAL
+  f.floats({0, 0.25f, 1, 0, 0.5f, 1}, "VEC2", 2);    // accessor 2: TEXCOORD_0
+  return f;
+}
+
+const std::string kTriangleMesh =
+    R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2}}]}])";
+
+void expect_near(const vec4& v, float x, float y, float z, float eps = 1e-5f) {
+  EXPECT_NEAR(v[0], x, eps);
+  EXPECT_NEAR(v[1], y, eps);
+  EXPECT_NEAR(v[2], z, eps);
+}
+
+TEST(Gltf, NodeTransformsComposeParentTimesChild) {
+  const test::TempDir dir("gltf");
+  // Parent: translation (10, 0, 0). Child: translation (1, 2, 3), 90° about z, scale 2.
+  const double s = std::sqrt(0.5);
+  const std::string nodes =
+      R"(,"scenes":[{"nodes":[0]}],"nodes":[{"translation":[10,0,0],"children":[1]},)"
+      R"({"mesh":0,"translation":[1,2,3],"rotation":[0,0,)" +
+      std::to_string(s) + "," + std::to_string(s) + R"(],"scale":[2,2,2]}])";
+  const Scene scene = load_scene(dir.write("t.gltf", triangle().json(kTriangleMesh + nodes)));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const Mesh& m = scene.meshes[0];
+  ASSERT_EQ(m.positions.size(), 3u);
+  expect_near(m.positions[0], 11, 2, 3);
+  expect_near(m.positions[1], 11, 4, 3);  // (1,0,0) scaled to (2,0,0), turned to (0,2,0)
+  expect_near(m.positions[2], 9, 2, 3);
+  ASSERT_EQ(m.normals.size(), 3u);
+  expect_near(m.normals[0], 0, 0, 1);
+}
+
+TEST(Gltf, NormalsTakeTheInverseTransposeAndAreRenormalized) {
+  const test::TempDir dir("gltf");
+  GltfFile f;
+  f.floats({0, 0, 0, 1, 0, 0, 0, 0, 1}, "VEC3", 3);
+  f.floats({0.6f, 0.8f, 0, 0.6f, 0.8f, 0, 0.6f, 0.8f, 0}, "VEC3", 3);
+  const std::string rest =
+      R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1}}]}],)"
+      R"("nodes":[{"mesh":0,"scale":[1,2,1]}],"scenes":[{"nodes":[0]}])";
+  const Scene scene = load_scene(dir.write("n.gltf", f.json(rest)));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  // M^-T (0.6, 0.8, 0) = (0.6, 0.4, 0), normalized.
+  const float len = std::sqrt(0.36f + 0.16f);
+  expect_near(scene.meshes[0].normals[0], 0.6f / len, 0.4f / len, 0);
+}
+
+TEST(Gltf, FlipsTexcoordV) {
+  const test::TempDir dir("gltf");
+  const Scene scene = load_scene(dir.write("uv.gltf", triangle().json(kTriangleMesh)));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const auto& uv = scene.meshes[0].texcoords;
+  ASSERT_EQ(uv.size(), 3u);
+  EXPECT_FLOAT_EQ(uv[0][0], 0.0f);
+  EXPECT_FLOAT_EQ(uv[0][1], 0.75f);
+  EXPECT_FLOAT_EQ(uv[1][1], 1.0f);
+  EXPECT_FLOAT_EQ(uv[2][1], 0.0f);
+}
+
+TEST(Gltf, ReadsNormalizedIntegerTexcoords) {
+  const test::TempDir dir("gltf");
+  GltfFile f;
+  f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
+  f.accessor(std::vector<std::uint16_t>{0, 65535, 65535, 0, 0, 0}, 5123, "VEC2", 3, true);
+  const std::string rest =
+      R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1}}]}])";
+  const Scene scene = load_scene(dir.write("uv16.gltf", f.json(rest)));
+  const auto& uv = scene.meshes.at(0).texcoords;
+  ASSERT_EQ(uv.size(), 3u);
+  EXPECT_FLOAT_EQ(uv[0][1], 0.0f);  // v = 1
+  EXPECT_FLOAT_EQ(uv[1][0], 1.0f);
+  EXPECT_FLOAT_EQ(uv[1][1], 1.0f);  // v = 0
+}
+
+TEST(Gltf, ReadsIndicesOfEveryComponentType) {
+  for (const int type : {5121, 5123, 5125}) {
+    const test::TempDir dir("gltf");
+    GltfFile f;
+    f.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3);
+    const std::vector<unsigned> idx = {0, 1, 2, 0, 2, 3};
+    if (type == 5121)
+      f.accessor(std::vector<std::uint8_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
+    if (type == 5123)
+      f.accessor(std::vector<std::uint16_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
+    if (type == 5125)
+      f.accessor(std::vector<std::uint32_t>(idx.begin(), idx.end()), type, "SCALAR", 6);
+    const std::string rest =
+        R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])";
+    const Scene scene = load_scene(dir.write("quad.gltf", f.json(rest)));
+    ASSERT_EQ(scene.meshes.size(), 1u) << type;
+    const Mesh& m = scene.meshes[0];
+    ASSERT_EQ(m.faces.size(), 2u) << type;
+    EXPECT_EQ(m.faces[1], (std::array<std::uint32_t, 3>{0, 2, 3})) << type;
+  }
+}
+
+TEST(Gltf, TriangleStripsAndFansBecomeTriangles) {
+  for (const int mode : {5, 6}) {
+    const test::TempDir dir("gltf");
+    GltfFile f;
+    f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3", 3);
+    const std::string rest = R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":)" +
+                             std::to_string(mode) + "}]}]";
+    const Scene scene = load_scene(dir.write("strip.gltf", f.json(rest)));
+    EXPECT_EQ(scene.meshes.at(0).faces.size(), 2u) << "mode " << mode;
+  }
+}
+
+TEST(Gltf, MaterialFactorsMapToPbrFields) {
+  const test::TempDir dir("gltf");
+  const std::string rest =
+      R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
+      R"("materials":[{"name":"shiny","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,1,0.5],)"
+      R"("metallicFactor":0.3,"roughnessFactor":0.7},"emissiveFactor":[1,0,0],)"
+      R"("extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":2},)"
+      R"("KHR_materials_transmission":{"transmissionFactor":0.4},"KHR_materials_ior":{"ior":1.33}}}])";
+  const Scene scene = load_scene(dir.write("mat.gltf", triangle().json(rest)));
+  const int i = scene.find_material("mat.gltf:shiny");
+  ASSERT_GE(i, 0);
+  const Material& m = scene.materials[std::size_t(i)];
+  EXPECT_EQ(m.model, Shading::pbr);
+  expect_near(m.base_color, 0.5f, 0.25f, 1.0f);
+  EXPECT_FLOAT_EQ(m.metallic, 0.3f);
+  EXPECT_FLOAT_EQ(m.roughness, 0.7f);
+  expect_near(m.emissive, 2, 0, 0);
+  EXPECT_FLOAT_EQ(m.transmission, 0.4f);
+  EXPECT_FLOAT_EQ(m.ior, 1.33f);
+  EXPECT_EQ(scene.meshes.at(0).face_materials.at(0), std::uint32_t(i));
+}
+
+TEST(Gltf, DefaultMaterialIsTheSpecsDefault) {
+  const test::TempDir dir("gltf");
+  const Scene scene = load_scene(dir.write("d.gltf", triangle().json(kTriangleMesh)));
+  const int i = scene.find_material("d.gltf:default");
+  ASSERT_GE(i, 0);
+  const Material& m = scene.materials[std::size_t(i)];
+  EXPECT_EQ(m.model, Shading::pbr);
+  EXPECT_FLOAT_EQ(m.metallic, 1.0f);
+  EXPECT_FLOAT_EQ(m.roughness, 1.0f);
+  expect_near(m.base_color, 1, 1, 1);
+}
+
+TEST(Gltf, TexturesGetTheirColourSpaceAndAreSharedPerImageAndSpace) {
+  const test::TempDir dir("gltf");
+  dir.write("tex.png", "not decoded at load");
+  const std::string rest =
+      R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2},"material":0}]}],)"
+      R"("images":[{"uri":"tex.png"},{"uri":"data:image/png;base64,AAECAw=="}],)"
+      R"("textures":[{"source":0},{"source":1}],)"
+      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},)"
+      R"("metallicRoughnessTexture":{"index":0}},"normalTexture":{"index":0,"scale":0.5},)"
+      R"("emissiveTexture":{"index":1}}])";
+  const Scene scene = load_scene(dir.write("tex.gltf", triangle().json(rest)));
+  const Material& m = scene.materials.at(std::size_t(scene.find_material("tex.gltf:#0")));
+  ASSERT_EQ(scene.textures.size(), 3u);
+  const TextureDesc& base = scene.textures.at(m.base_color_texture);
+  EXPECT_TRUE(base.srgb);
+  EXPECT_EQ(fs::path(base.path).filename(), "tex.png");
+  EXPECT_TRUE(base.data.empty());
+  EXPECT_EQ(m.metallic_roughness_texture, m.normal_texture);
+  EXPECT_NE(m.metallic_roughness_texture, m.base_color_texture);
+  EXPECT_FALSE(scene.textures.at(m.normal_texture).srgb);
+  EXPECT_FLOAT_EQ(m.normal_scale, 0.5f);
+  const TextureDesc& emissive = scene.textures.at(m.emissive_texture);
+  EXPECT_TRUE(emissive.srgb);
+  EXPECT_EQ(emissive.path, "tex.gltf:image 1");
+  EXPECT_EQ(emissive.data, std::string("\x00\x01\x02\x03", 4));
+}
+
+TEST(Gltf, MissingImageFileIsOneLine) {
+  const test::TempDir dir("gltf");
+  const std::string rest =
+      R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
+      R"("images":[{"uri":"missing.png"}],"textures":[{"source":0}],)"
+      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}])";
+  const std::string path = dir.write("m.gltf", triangle().json(rest));
+  EXPECT_EQ(test::error_of([&] { load_scene(path); }),
+            path + ": image 0: missing.png: No such file or directory");
+}
+
+TEST(Gltf, CameraComesFromItsNode) {
+  const test::TempDir dir("gltf");
+  const std::string rest =
+      kTriangleMesh +
+      R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.5,"znear":0.1}}],)"
+      R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,1,5]}],"scenes":[{"nodes":[0,1]}])";
+  const Scene scene = load_scene(dir.write("cam.gltf", triangle().json(rest)));
+  expect_near(scene.camera.position(), 0, 1, 5);
+  expect_near(scene.camera.forward(), 0, 0, -1);
+  expect_near(scene.camera.up(), 0, 1, 0);
+  EXPECT_NEAR(scene.camera.fov(), 0.5f * 180.0f / 3.14159265f, 1e-3f);
+}
+
+TEST(Gltf, SceneWithoutCameraOrLightsIsFramed) {
+  const test::TempDir dir("gltf");
+  const Scene scene = load_scene(dir.write("framed.gltf", triangle().json(kTriangleMesh)));
+  // In front of the triangle (+z), looking at its centre.
+  EXPECT_GT(scene.camera.position()[2], 1.0f);
+  EXPECT_LT(scene.camera.forward()[2], -0.9f);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_GT(scene.lights[0].position[1], 1.0f);
+}
+
+TEST(Gltf, PointLightGivesItsIlluminanceAtTheSceneCentre) {
+  const test::TempDir dir("gltf");
+  const std::string rest =
+      kTriangleMesh +
+      R"(,"extensionsUsed":["KHR_lights_punctual"],)"
+      R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":100,)"
+      R"("color":[1,0.5,0.25],"range":50}]}},)"
+      R"("nodes":[{"mesh":0},{"translation":[0.5,0.5,10],)"
+      R"("extensions":{"KHR_lights_punctual":{"light":0}}}],"scenes":[{"nodes":[0,1]}])";
+  const Scene scene = load_scene(dir.write("light.gltf", triangle().json(rest)));
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const Light& l = scene.lights[0];
+  expect_near(l.position, 0.5f, 0.5f, 10);
+  expect_near(l.color, 1, 0.5f, 0.25f);
+  EXPECT_NEAR(l.intensity, 100.0f / 100.0f, 1e-4f);  // 100 cd at 10 units from the centre
+  EXPECT_FLOAT_EQ(l.range, 50.0f);
+}
+
+TEST(Gltf, GlbLoadsAsItsJsonForm) {
+  const test::TempDir dir("gltf");
+  const std::string nodes =
+      R"(,"nodes":[{"mesh":0,"translation":[1,2,3]}],"scenes":[{"nodes":[0]}])";
+  const GltfFile f = triangle();
+  const Scene a = load_scene(dir.write("a.gltf", f.json(kTriangleMesh + nodes)));
+  const Scene b = load_scene(dir.write("b.GLB", f.glb(kTriangleMesh + nodes)));
+  ASSERT_EQ(b.meshes.size(), 1u);
+  ASSERT_EQ(a.meshes[0].positions.size(), b.meshes[0].positions.size());
+  for (std::size_t i = 0; i < a.meshes[0].positions.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(a.meshes[0].positions[i][k], b.meshes[0].positions[i][k]);
+  expect_near(b.meshes[0].positions[1], 2, 2, 3);
+}
+
+TEST(Gltf, NodeCycleIsAnError) {
+  const test::TempDir dir("gltf");
+  const std::string rest =
+      kTriangleMesh +
+      R"(,"nodes":[{"mesh":0,"children":[1]},{"children":[0]}],"scenes":[{"nodes":[0]}])";
+  const std::string path = dir.write("cycle.gltf", triangle().json(rest));
+  const std::string msg = test::error_of([&] { load_scene(path); });
+  EXPECT_EQ(msg.rfind(path + ": node #0 is its own descendant", 0), 0u) << msg;
+}
+
+// Every glTF 2.0 file of Debian's assimp-testmodels: loads (and validates) or fails with a
+// one-line rt2::Error naming the file; nothing else escapes.
+TEST(Gltf, AssimpTestModelsLoadOrFailWithOneLine) {
+  const fs::path root = "/usr/share/assimp/models/glTF2";
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  int loaded = 0, refused = 0;
+  for (const auto& e : fs::recursive_directory_iterator(root, ec)) {
+    const std::string ext = e.path().extension().string();
+    if (ext != ".gltf" && ext != ".glb") continue;
+    const std::string path = e.path().string();
+    testing::internal::CaptureStderr();
+    try {
+      const Scene scene = load_scene(path);
+      EXPECT_NO_THROW(scene.validate()) << path;
+      ++loaded;
+    } catch (const Error& err) {
+      const std::string msg = err.what();
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+      EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
+      ++refused;
+    } catch (const std::exception& err) {
+      ADD_FAILURE() << path << ": threw something other than rt2::Error: " << err.what();
+    }
+    testing::internal::GetCapturedStderr();
+  }
+  EXPECT_GE(loaded, 20) << "refused " << refused;
+  std::cout << "assimp-testmodels glTF2: " << loaded << " loaded, " << refused << " refused\n";
+}
+
+}  // namespace
+}  // namespace rt2
