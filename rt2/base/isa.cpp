@@ -1,42 +1,9 @@
-// rt2/base/isa.cpp — which instruction sets are built (the build defines RT2_BUILT_ISAS for this
-// file) and which this CPU runs.
+// rt2/base/isa.cpp — which instruction sets are built and which this CPU runs.
 #include "rt2/base/isa.h"
 
 #include "rt2/base/error.h"
-#include "rt2/render/kernel_table.h"
-
-// Each set's table, defined in its own compilation of isa_kernels.cpp.
-#if defined(MLIB_SCALAR)
-namespace rt2::scalar {
-const IsaKernels& kernels();
-}
-#else
-namespace rt2::sse41 {
-const IsaKernels& kernels();
-}
-namespace rt2::avx2 {
-const IsaKernels& kernels();
-}
-namespace rt2::avx512 {
-const IsaKernels& kernels();
-}
-#endif
 
 namespace rt2 {
-
-const IsaKernels& isa_kernels(Isa isa) {
-#if defined(MLIB_SCALAR)
-  if (isa == Isa::scalar) return scalar::kernels();
-#else
-  switch (isa) {
-    case Isa::sse41: return sse41::kernels();
-    case Isa::avx2: return avx2::kernels();
-    case Isa::avx512: return avx512::kernels();
-    case Isa::scalar: break;
-  }
-#endif
-  throw Error(std::string("ISA '") + isa_name(isa) + "' is not in this build");
-}
 
 const std::vector<Isa>& built_isas() {
 #if defined(MLIB_SCALAR)
@@ -93,6 +60,5 @@ Isa parse_isa(const std::string& name) {
   }
   throw Error("unknown ISA '" + name + "' (this build has " + known + ")");
 }
-
 
 }  // namespace rt2

@@ -1,24 +1,12 @@
-// rt2/base/isa.h — the instruction sets rt2's ray kernels are built for, and the choice among
-// them at run time.
+// rt2/base/isa.h — the instruction sets rt2's kernel is built for, and the choice among them
+// at run time.
 //
-// One binary runs on any x86-64 CPU with SSE4.1. The code that traces rays (the wide BVH
-// traversal, the triangle tests, the render kernel) is compiled once per instruction set,
-// each copy in its own namespace (rt2::sse41, rt2::avx2, rt2::avx512; see isa_namespace.h),
-// and only those translation units get -mavx2 / -mavx512*: nothing that runs before the
-// choice can contain a wider instruction (a test disassembles the program to check). The
-// choice is made once, from CPUID: the widest set the CPU supports, unless `--isa` forces
-// one. The scalar build (scons arch=scalar) has a single set, `scalar`.
-//
-// Width: sse41 and scalar use 4-wide BVH nodes, avx2 8-wide ones and avx512 16-wide ones:
-// a node's child boxes fill one SIMD register per plane. Against 8-wide nodes on AVX-512, a
-// random line through the mesh meets 27-28 % fewer inner nodes (wide_sah), and bench_trace
-// (rt2's ratio to Embree, the two binaries alternated, four rounds, one thread, the four
-// bench-peer meshes) ran incoherent rays 3-13 % faster with the fast triangle test and
-// 5-14 % with the watertight one, shadow rays 4-9 % (watertight -2 ... +13 %),
-// reflections 5-8 % (0-11 %), primary rays -5 ... +3 % (-3 ... +5 %).
-// Triangles are tested four at a time in every set (eight, two blocks, where the 8- and
-// 16-wide walks pair them), with the same operations in the same order, so every set finds
-// the same hits, bit for bit.
+// One binary runs on any x86-64 CPU with SSE4.1. rt2/kernel/ is compiled once per set, each
+// copy in its own namespace (rt2::sse41, rt2::avx2, rt2::avx512) with that set's flags, and
+// nothing else gets them, so nothing that runs before the choice can hold a wider
+// instruction (tests/rt2/base/isa_test.cpp disassembles rt2cpr to check). The choice is made
+// once, from CPUID: the widest set the CPU runs, unless `--isa` forces one. Every set finds
+// the same hits, bit for bit. The scalar build (scons arch=scalar) has one set, `scalar`.
 #pragma once
 
 #include <string>

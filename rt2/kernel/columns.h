@@ -1,15 +1,10 @@
-// rt2/kernel/columns.h — a batch of records as structure of arrays: C columns of 32-bit values
-// (floats, or unsigned integers through u()), each 64-byte aligned and followed by kSlack
-// values of slack, so that a SIMD pass of up to 16 lanes may load whole vectors from any
-// index below size(), and store them at size() after reserve(size() + 16).
+// rt2/kernel/columns.h — a batch of records as structure of arrays: C columns of 32-bit
+// values (floats, or unsigned integers through u()), each 64-byte aligned and followed by
+// kSlack values of slack, so that a SIMD pass of up to 16 lanes may load whole vectors from
+// any index below size(), and store them at size() after reserve(size() + 16).
 //
-// The render kernel's batches (batches.h) are kept this way: the packet queries load a
-// packet's rays with one vector load per coordinate, and the shading lanes read rays and
-// append shadow and secondary rays a vector at a time (mlib::compress), where records of
-// structures would be transposed lane by lane.
-//
-// Compiled per instruction set like the kernel (the code lives in rt2::RT2_ISA, so that no
-// copy built for a wider set can stand in for another's).
+// The render kernel's batches are kept this way: the packet queries load a packet's rays with
+// one vector load per coordinate, and the shading lanes append rays a vector at a time.
 #pragma once
 
 #include <algorithm>
@@ -18,6 +13,8 @@
 #include <cstring>
 #include <memory>
 #include <new>
+
+#include "rt2/kernel/kernel.h"
 
 namespace rt2::RT2_ISA {
 

@@ -1,48 +1,38 @@
-// rt2/kernel/packet_traverse.h — walking the wide BVH with a packet of up to 16 coherent rays
-// (a 4 x 4 block of primary rays, or their shadow rays towards one light): the closest
-// hits, and an any-hit walk for shadow rays.
+// rt2/kernel/packet_traverse.h — walking the wide BVH with a packet of up to 16 coherent
+// rays (4 x 4 primary rays, or shadow rays towards one light): closest and any hit.
 //
-// Inner nodes are tested against the packet's frustum, not ray by ray: per axis, the
-// interval of the rays' origins and of their reciprocal directions bound every ray's slab
-// distances (interval arithmetic; Boulos et al. 2007, "Geometric and arithmetic culling
-// methods for entire ray packets"), so one SIMD pass over a node's N children, as costly
-// as one ray's, decides for all 16 rays at once. The rays must share their direction's
-// sign on every axis (the same near and far box rows), and every 1/dir component must be
-// finite; otherwise the caller walks the rays one by one (wide_traverse.h).
-//
-// The frustum never culls a box one of the rays enters. Per axis, with the ray's own
-// rows, its entry distance is n = (b_near - o) * inv and its exit f = (b_far - o) * inv_far
-// (inv_far = inv * kSlabPad, as in wide_traverse.h). Rounding is monotone, so over the
-// packet n >= (b_near - O_near) * I_near where O_near is the origin bound that makes the
-// difference smallest in magnitude and I_near the reciprocal of smallest magnitude, as
-// long as that difference has the sign of a box in front; when it has not, the bound is
-// negative and the entry is t_min's anyway (the node test takes the maximum with
-// t_min >= 0). Likewise f <= (b_far - O_far) * I_far with the largest magnitudes, and a
-// ray whose exit is negative fails its own test. Compared as integers (NodeRay<N, true>),
-// as every ray's own test compares them, the packet enters a box whenever a ray does.
-//
-// The frustum only filters: each child it passes is then tested ray by ray, with exactly
-// the arithmetic of each ray's own walk (SIMD over rays), and the walk carries the rays
-// that entered each subtree. A subtree no ray enters is dropped, so the packet never
-// visits more nodes than its rays' own walks together (with origins spread over a surface,
-// shadow rays make loose frusta), and at a leaf only the rays that entered test its
-// triangle blocks, each with its own triangle test. So every ray finds the hit its own
-// walk finds, bit for bit: the closest one (ties to the smaller index, as there), or for
-// any-hit the same answer. The closest-hit walk visits children nearest first by the
-// frustum's entry distance and drops a subtree when it lies beyond every ray's hit.
-//
-// Compiled per instruction set (rt2/base/isa.h): the code lives in rt2::RT2_ISA.
+// Inner nodes are tested against the packet's frustum (interval arithmetic over the rays'
+// origins and reciprocal directions; Boulos et al. 2007), one SIMD pass over a node's
+// children for all rays; the rays must share their direction's signs. The frustum only
+// filters: each child it passes is then tested ray by ray with each ray's own arithmetic,
+// and leaves are tested only by the rays that entered them, so every ray finds the hit of
+// its own walk (wide_traverse.h), bit for bit, and the packet never visits more nodes than
+// its rays' walks together.
 #pragma once
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
 
-#include "rt2/kernel/wide_traverse.h"
+#include "rt2/kernel/kernel.h"
+
 #include "rt2/kernel/triangle_packet_intersect.h"
+#include "rt2/kernel/wide_traverse.h"
 
 namespace rt2::RT2_ISA {
 
+// Why the frustum never culls a box one of the rays enters. Per axis, with the ray's own
+// rows, its entry distance is n = (b_near - o) * inv and its exit f = (b_far - o) * inv_far
+// (inv_far = inv * kSlabPad, as in wide_traverse.h). Rounding is monotone, so over the
+// packet n >= (b_near - O_near) * I_near where O_near is the origin bound that makes the
+// difference smallest in magnitude and I_near the reciprocal of smallest magnitude, as long
+// as that difference has the sign of a box in front; when it has not, the bound is negative
+// and the entry is t_min's anyway (the node test takes the maximum with t_min >= 0).
+// Likewise f <= (b_far - O_far) * I_far with the largest magnitudes, and a ray whose exit
+// is negative fails its own test. Compared as integers (NodeRay<N, true>), as every ray's
+// own test compares them, the packet enters a box whenever a ray does. The closest-hit walk
+// visits children nearest first by the frustum's entry distance and drops a subtree that
+// lies beyond every ray's hit.
 // A packet's rays as the walk needs them: structure of arrays for SIMD over rays (the
 // per-ray slab terms of NodeRay<N, true>), and the frustum that bounds them.
 template <int N>
@@ -58,7 +48,7 @@ struct PacketRays {
   alignas(64) float inv_far[3][kPacketSize];
   int near[3], far[3];  // box rows, shared by all rays
   // The frustum, per axis: (bounds[near] - o_near) * i_near is at most every ray's entry
-  // distance, (bounds[far] - o_far) * i_far at least every exit (see the file comment).
+  // distance, (bounds[far] - o_far) * i_far at least every exit (see above).
   V o_near[3], o_far[3], i_near[3], i_far[3];
   // Whether every loaded ray's w lanes are +0, as ray.h's invariant says (the structure of
   // arrays holds x, y, z only; code that emulates four-lane arithmetic relies on it).

@@ -1,33 +1,22 @@
-// rt2/kernel/phong_lanes.h — stage 3 of the render kernel (tracer.h) for Phong hits, kHitLanes
-// hits in one SIMD pass: their surface points (surface_at), the ambient term, each light's
-// term (shade: the shadow rays) and the reflected rays (spawn), structure of arrays.
+// rt2/kernel/phong_lanes.h — Phong shading (phong.h) of up to kHitLanes hits in one SIMD
+// pass, structure of arrays: their surface points (surface_point.h), the ambient term, each
+// light's term (the shadow rays) and the reflected rays.
 //
-// Every lane computes what the one-hit code computes, bit for bit: the same operations in
-// the same order, vec4's dot product as (x x' + y y') + (z z' + w w') with the w lanes the
-// one-hit code carries (all +0, but a flipped normal's -0, which decides the sign of a zero
-// dot product in reflect; the light's dot products take their w term as +0 or NaN, as only
-// their sign above 0 and their value when positive are used, which a zero's sign cannot
-// change), normalize's rescaling path taken per lane by the one-hit
-// normalize, the checker's cell parity from exact floors (a cell index of 2^24 or more is
-// even, as every float that large is; NaN and beyond int64 give the cast's even integer
-// indefinite), std::pow per lane for highlights. The caller emits each lane's results in
-// batch order (emit_lane, or emit_lanes a vector at a time where that order is kept), so
-// the batch's shadow and secondary rays come out in the order the one-hit step makes them,
-// and images are the same bits. The rays are read from the batch's columns: lanes past the
-// batch's end read whatever the columns hold there, and are never emitted.
-//
-// Which hits: a Phong material without a texture or transparency (textures and refraction
-// keep the one-hit step), when every hit considers every light (no light lists) and there
-// are at most kMaxLaneLights lights (the results of each lane's lights are kept until they
-// are emitted in order).
-//
-// Compiled per instruction set (rt2/base/isa.h): the code lives in rt2::RT2_ISA.
+// Invariant: every lane computes what phong.h computes for one hit, bit for bit: the same
+// operations in the same order, vec4's dot product as (x x' + y y') + (z z' + w w') with the
+// w lanes the one-hit code carries, normalize's rescaling path per lane, std::pow per lane.
+// Each lane's results are emitted in batch order (emit_lane, or emit_lanes where that order
+// is kept), so the batches come out as the one-hit code makes them. Which hits: Phong without
+// texture or transparency, when every hit considers every light and there are at most
+// kMaxLaneLights lights.
 #pragma once
 
 #include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+
+#include "rt2/kernel/kernel.h"
 
 #include "mlib/vfloat.h"
 #include "rt2/kernel/batches.h"
@@ -37,7 +26,6 @@
 #include "rt2/render/renderer.h"
 
 namespace rt2::RT2_ISA {
-namespace detail {
 
 inline constexpr int kHitLanes = mlib::kWidestLanes;
 inline constexpr std::size_t kMaxLaneLights = 8;
@@ -389,7 +377,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
     for (int c = 0; c < 3; ++c) out[c] = weight[c] * (ka[c] * V::broadcast(sc.ambient[c]));
     lanes::store3(out, p.ambient_term);
   }
-  // Each light's term: the shadow ray's direction, length and weight (shade).
+  // Each light's term: the shadow ray's direction, length and weight (phong_lights).
   const std::size_t light_count = sc.lights.size();
   if (light_count > 0) {
     const M shiny_material = (ks[0] > zero) | (ks[1] > zero) | (ks[2] > zero);
@@ -443,7 +431,7 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
       dist.store(out.distance);
     }
   }
-  // The reflected ray (spawn), where deep and heavy enough.
+  // The reflected ray (phong_spawn), where deep and heavy enough.
   p.reflects = 0;
   if (depth < st.depth) {
     V w[3];
@@ -462,8 +450,8 @@ inline void shade_lanes(const CompiledScene& sc, const RenderSettings& st, int d
   }
 }
 
-// What a pass over the lanes of `active` adds to the counters (shade and spawn count each
-// hit as they go; the lanes count a pass at once).
+// What a pass over the lanes of `active` adds to the counters (phong_lights and phong_spawn
+// count each hit as they go; the lanes count a pass at once).
 inline void count_lanes(const CompiledScene& sc, const PhongLanes& p, unsigned active,
                         RayCounts& counts) {
   const unsigned n = static_cast<unsigned>(std::popcount(active));
@@ -477,8 +465,8 @@ inline void count_lanes(const CompiledScene& sc, const PhongLanes& p, unsigned a
   counts.reflection += static_cast<unsigned>(std::popcount(p.reflects));
 }
 
-// Lane l's results into the batch, as shade and spawn add them for one hit (`sample`: its
-// ray's).
+// Lane l's results into the batch, as phong_lights and phong_spawn add them for one hit
+// (`sample`: its ray's).
 inline void emit_lane(const CompiledScene& sc, const PhongLanes& p, int l, std::uint32_t sample,
                       Batches& b) {
   const unsigned bit = 1u << l;
@@ -553,5 +541,4 @@ inline void emit_lanes(const CompiledScene& sc, const PhongLanes& p, const std::
   }
 }
 
-}  // namespace detail
 }  // namespace rt2::RT2_ISA

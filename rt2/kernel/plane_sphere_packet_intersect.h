@@ -1,16 +1,15 @@
 // rt2/kernel/plane_sphere_packet_intersect.h — a plane or a sphere against N rays of a
-// packet at once (structure of arrays), for the packet queries of rt2/kernel/query.h.
+// packet at once (structure of arrays).
 //
-// Each lane computes exactly what the one-ray tests of plane.h and sphere.h compute, bit
-// for bit: the same operations in the same order, with vec4's dot product (dpps) summed as
-// (x x' + y y') + (z z' + w w'), the w terms kept for the planes' and spheres' own w and
-// the rays' w taken as +0 (ray.h's invariant; the packet code checks it and tests rays
-// that break it one by one), so a product like 0 x inf still gives NaN as there. A sphere's lanes that the
-// one-ray test sends to double precision (a sphere small against its distance) are
-// reported, not computed: the caller runs the one-ray test for them.
-//
-// Compiled per instruction set (rt2/base/isa.h): the code lives in rt2::RT2_ISA.
+// Invariant: each lane computes what the one-ray tests of geometry/plane.h and sphere.h
+// compute, bit for bit: the same operations in the same order, vec4's dot product summed as
+// (x x' + y y') + (z z' + w w') with the primitives' own w terms and the rays' w taken as +0
+// (geometry/ray.h's invariant; rays that break it are tested one by one). A sphere's lanes
+// that the one-ray test sends to double precision are reported, not computed: the caller
+// runs the one-ray test for them.
 #pragma once
+
+#include "rt2/kernel/kernel.h"
 
 #include "mlib/vfloat.h"
 #include "rt2/geometry/plane.h"

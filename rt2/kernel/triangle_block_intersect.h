@@ -1,31 +1,23 @@
 // rt2/kernel/triangle_block_intersect.h — a ray against the four triangles of a
-// TriangleBlock in one SIMD pass: the thesis's fast test and the watertight test.
+// TriangleBlock in one SIMD pass: the thesis's fast test and the watertight test
+// (Woop, Benthin and Wald 2013).
 //
-// Each lane computes exactly what the one-triangle tests of triangle.h compute, in the same
-// order (no FMA; the build forbids contraction): a block test and `intersect` /
-// `intersect_watertight` agree bit for bit on every hit (a test checks it), whatever the
-// instruction set. Compiled per instruction set (rt2/base/isa.h): the code lives in rt2::RT2_ISA.
-//
-// A test is a small object built once per ray (the ray, and for the watertight test its
-// shear); calling it on a block returns the bit mask of the lanes hit with t in
-// (t_min, t_max] and their t, u, v. The upper bound is inclusive so that the closest-hit
-// query can break ties between equal t by triangle index (wide_traverse.h). The tests keep
-// the ray's scalars and broadcast them where a block is tested (a broadcast from memory is
-// one load, as reading a stored vector is), so a ray that tests no triangle (a shadow ray
-// leaving a convex surface toward the light) pays for no broadcast: 7-8 instructions of
-// its 290-370 (callgrind, a shadow set of 0.28 triangles a ray).
+// Invariant: each lane computes what the one-triangle tests of geometry/triangle.h compute, in
+// the same order (no FMA: the build forbids contraction), so both agree bit for bit on every
+// hit, whatever the instruction set. A test is built once per ray; called on a block it gives
+// the lanes hit with t in (t_min, t_max] (inclusive, so that the closest-hit walk can break
+// ties by triangle index) and their t, u, v. It keeps the ray's scalars and broadcasts them
+// where a block is tested, so a ray that tests no triangle pays for no broadcast.
 #pragma once
 
 #include <array>
 #include <bit>
 
+#include "rt2/kernel/kernel.h"
+
 #include "mlib/vfloat.h"
 #include "rt2/geometry/triangle.h"
 #include "rt2/geometry/triangle_block.h"
-
-#if !defined(RT2_ISA)
-#error "ray kernels are compiled per instruction set: build this file with -DRT2_ISA=<name>"
-#endif
 
 namespace rt2::RT2_ISA {
 
@@ -218,7 +210,7 @@ struct FastTriangleTest : PairQueries<FastTriangleTest> {
 
   MLIB_INLINE Undivided undivided(const TriangleBlock& b, vfloat4 t_min, vfloat4 t_max) const {
     // Built in place and returned as one object: returning `{terms, terms.may_hit(...)}`
-    // made GCC 12 copy the terms through memory, and single rays 12-14 % slower.
+    // makes GCC 12 copy the terms through memory.
     const auto org = broadcast_xyz<vfloat4>(ray.org), dir = broadcast_xyz<vfloat4>(ray.dir);
     Undivided d{
         FastTerms<vfloat4>(TriangleLanes<vfloat4, LaneMap::own>{b}, org.data(), dir.data()), 0};

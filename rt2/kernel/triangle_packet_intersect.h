@@ -1,24 +1,19 @@
-// rt2/kernel/triangle_packet_intersect.h — the triangles of a block against a packet of
-// up to 16 rays (the leaves of a packet walk, bvh/packet_traverse.h).
+// rt2/kernel/triangle_packet_intersect.h — the triangles of a block against a packet of up
+// to 16 rays: the leaves of a packet walk (packet_traverse.h).
 //
-// Both tests take one triangle against kRayLanes rays in one SIMD pass (triangle by triangle,
-// where the four-triangle test takes one ray against four triangles): a coherent packet's
-// rays mostly share the leaves they test, so the lanes stay full. Each (triangle, ray) pair is
-// computed with FastTerms or WatertightLanes, as the four-triangle tests do, so both find
-// the same hits, bit for bit. The watertight test needs the rays to share their axis
-// order (each keeps its own shear); a packet whose rays do not is tested ray by ray, each
-// ray with its own four-triangle test.
-//
-// Both find, for each ray, the hit its own walk would keep: hits are merged with
-// `replaces`, which orders them by t and then by triangle index, whatever order they are
-// found in.
-//
-// Compiled per instruction set (rt2/base/isa.h): the code lives in rt2::RT2_ISA.
+// One triangle against kRayLanes rays per SIMD pass (a coherent packet's rays share their
+// leaves, so the lanes stay full), each (triangle, ray) pair computed with FastTerms or
+// WatertightLanes as the four-triangle tests compute it, so every ray finds the hit of its
+// own walk, bit for bit; hits are merged with `replaces` (by t, then triangle index) in any
+// order. The watertight test needs the rays to share their axis order; a packet whose rays
+// do not is tested ray by ray.
 #pragma once
 
 #include <bit>
 #include <cstdint>
 #include <utility>
+
+#include "rt2/kernel/kernel.h"
 
 #include "mlib/vfloat.h"
 #include "rt2/kernel/triangle_block_intersect.h"
@@ -201,8 +196,7 @@ struct TriangleMajorPacketTest {
     if (!lanes) return done;
     // Few rays: (ray, triangle) pairs, N / 4 rays against the block's four triangles per
     // pass, when that takes fewer passes than triangle by triangle; with 8 or 16 lanes, half
-    // as many at most (a pass of pairs also spreads its rays over the lanes: measured on the
-    // dragon scene, the split at half beats the split at fewer by 1-2 %).
+    // as many at most (a pass of pairs also spreads its rays over the lanes).
     int triangles = 0;  // empty lanes come last
     while (triangles < TriangleBlock::kLanes && b.prim_of(triangles) != TriangleBlock::kNoPrim)
       ++triangles;

@@ -1,33 +1,13 @@
-// rt2/kernel/wide_traverse.h — walking the wide BVH (wide_bvh.h) with one ray: the closest hit,
-// and an any-hit walk for shadow rays.
+// rt2/kernel/wide_traverse.h — walking the wide BVH (bvh/wide_bvh.h) with one ray: the
+// closest hit, and an any-hit walk for shadow rays.
 //
-// A node is tested in one SIMD pass over its N child boxes (the slab test, Kay and Kajiya
-// 1986). The ray picks, once, its near and far box rows per axis from the signs of its
-// direction (Embree's TravRay), so a box test is a subtract and a multiply per plane (one
-// FMA in the 8- and 16-wide kernels, NodeRay) and no min/max between the planes of an axis.
-// Robustness as in aabb.h (Ize 2013): the far distance is scaled by 1 + 2 gamma(3) so that
-// rounding never culls a box the ray touches, and the NaN a ray in a slab's plane produces
-// (0 * inf) is replaced by the neighbouring bound, because maxps / minps return their
-// second operand for NaN: such a ray counts as inside the slab.
-//
-// Closest hit: a ray from outside the tree's box that misses it returns before any set-up
-// (may_enter). Of two children a ray enters, the nearer is visited first; three or more are
-// pushed in the node's order for the ray's octant (WideNode::octant_order: roughly nearest
-// first, without sorting, one compress_in_order in the 8- and 16-wide kernels; the 4-wide
-// kernel sorts them by distance), the top one visited. The others wait on a stack with their
-// entry distance and are dropped when a closer hit is found. In the 8- and 16-wide trees, two
-// children hit that are both leaves are not ordered: their first blocks are tested together,
-// one in each half of an 8-wide pass (the bottom of the tree has many such nodes; on
-// bench_trace's dragon incoherent rays 4 % and reflections 8 % faster). Ties between triangles
-// at the same t go to the smaller triangle index, so the hit does not depend on the order of
-// the walk: BVH4, BVH8 and BVH16 (every ISA) give the same hit, bit for bit.
-// Any hit: no sorting; three or more children are pushed in the opposite octant's order
-// (farthest on top); two that are both leaves have their first blocks tested together, as
-// in the closest-hit walk (bench_trace's shadow rays, old and new binaries alternated: -3 ...
-// +10 %, about +3.5 % over the four meshes and both tests); the walk stops as soon as
-// `on_hit` says so.
-//
-// Compiled per instruction set (rt2/base/isa.h): the code lives in rt2::RT2_ISA.
+// A node's N child boxes are tested in one SIMD pass (the slab test, Kay and Kajiya 1986),
+// near and far rows picked once per ray from its direction's signs (Embree's TravRay), with
+// Ize's robust padding (2013: far distances times 1 + 2 gamma(3)) so rounding never culls a
+// box the ray touches. Closest hit: children visited nearest first (two: ordered; three or
+// more: pushed in the node's order for the ray's octant), ties between triangles at equal t
+// to the smaller index, so every width (every ISA) finds the same hit, bit for bit. Any hit:
+// no ordering, stops as soon as `on_hit` says so.
 #pragma once
 
 #include <bit>
@@ -36,6 +16,8 @@
 #include <limits>
 #include <type_traits>
 #include <utility>
+
+#include "rt2/kernel/kernel.h"
 
 #include "mlib/vfloat.h"
 #include "rt2/geometry/aabb.h"
@@ -67,10 +49,7 @@ inline constexpr bool kFusedNodeTest =
 //
 // The fused form (kFusedNodeTest, with Finite): a slab distance (b - org) / dir is
 // b * inv + c, one FMA from the plane b, with c = -org * inv computed once per ray (as
-// Embree's fast mode): a multiply off the chain each node waits on. Measured with
-// bench_trace on the four bench-peer meshes (its ratio to Embree, old and new binaries
-// alternated, five rounds): fast-test incoherent rays 1-3 % faster, shadow rays 0-7 %,
-// reflections 1-4 %; the watertight test's within +-1 % (nine rounds). The rounded c may
+// Embree's fast mode): a multiply off the chain each node waits on. The rounded c may
 // be off by half an ulp of org * inv, which is no small part of a distance when the origin
 // lies far from the coordinate origin and near the box (the boxes' padding, 4 ulps of
 // their coordinates, would absorb it, but the bound should not lean on that). So c carries
@@ -85,12 +64,9 @@ struct NodeRay {
   using V = mlib::vfloat<N>;
   static constexpr bool kFused = Finite && kFusedNodeTest<N>;
   // The ray's constants. The 16-wide kernels keep them as floats and broadcast them where a
-  // node is tested: their walks spilled every vector of these they use (GCC 12; twelve in
-  // the fused form), a 64-byte store each per ray, and a broadcast from memory is one load
-  // as a reload is. bench_trace, old and new binaries alternated (rt2 / Embree, 3-6
-  // rounds, four meshes): watertight primary, shadow and reflection rays +1 ... +16 %,
-  // fast ones -0.2 ... +7.6 %. In the 4- and 8-wide kernels floats measured 1-6 % slower
-  // (the dragon, three rounds), so they keep vectors.
+  // node is tested: GCC 12 spills such vectors in their walks (a 64-byte store each per
+  // ray), and a broadcast from memory is one load, as a reload is. The 4- and 8-wide
+  // kernels keep vectors, which measured faster there.
   using Constant = std::conditional_t<(N >= 16), float, V>;
   Constant org[3], inv_near[3], inv_far[3];
   Constant c_near[3], c_far[3];  // the fused form's offsets
@@ -110,7 +86,7 @@ struct NodeRay {
 
   explicit NodeRay(const Ray& r, const RayPre& pre) {
     // 1/dir is +-inf for a zero component, with the zero's sign: the sign bits decide, all
-    // three read at once (axis by axis, seven instructions more in every ray's set-up).
+    // three read at once.
     const unsigned negative = unsigned(mlib::simd::movemask(pre.inv_dir.m128())) & 7u;
     order_shift = kOrderBits<N> * int(negative);
     for (int a = 0; a < 3; ++a) {
@@ -157,8 +133,8 @@ struct NodeRay {
 };
 
 // Whether the node test may take the tree form: every 1/dir component finite, and every
-// org * 1/dir (the fused form's offset, with its margin) far from overflow. The three axes
-// in one vfloat4 comparison: axis by axis it was some 25 instructions of every ray's set-up.
+// org * 1/dir (the fused form's offset, with its margin) far from overflow; the three axes
+// in one vfloat4 comparison.
 MLIB_INLINE bool tree_form(const Ray& r, const RayPre& pre) {
   const vfloat4 inv = vfloat4::from_f4(pre.inv_dir.m128()), org = vfloat4::from_f4(r.org.m128());
   const auto ok = (abs(inv) < vfloat4::broadcast(kInfinity)) &  // false for NaN as well
@@ -217,13 +193,10 @@ MLIB_INLINE void prefetch_ref(const WideNode<N>* nodes, const TriangleBlock* blo
 }
 
 // The nodes and blocks a walk visits, counted only when the caller asks for them (Count;
-// with_walk_form picks the walk by `counts`): the walks' loops are short of
-// registers, and two live counters pushed the stack index, the tree's node pointer and some
-// of the ray's constants out to memory. Without them, with the node pointer and the
-// prefetch flag held in locals and the hit returned by value (not written through a
-// pointer kept live), bench_trace's fast-test rays on the four bench-peer meshes ran (rt2's
-// ratio to Embree, old and new binaries in alternating order, six rounds, one thread):
-// incoherent -0.1 ... +5 %, shadow +4 ... +10 %, reflection +3.5 ... +6 %.
+// with_walk_form picks the walk by `counts`): the walks' loops are short of registers, and
+// two live counters push the stack index, the node pointer and some of the ray's constants
+// out to memory. For the same reason the walks hold the node pointer and the prefetch flag
+// in locals and return the hit by value.
 template <bool Count>
 struct WalkCounts {
   TraversalCounts c;
@@ -242,12 +215,10 @@ struct WalkCounts<false> {
 // a hit there (a plane or a sphere, which a triangle at the same t beats): a Hit with t, u,
 // v and prim = the triangle's index when one is found, else t = t_max and prim = prior.
 // Ties at equal t go to the smaller index. `test` is a FastTriangleTest or a
-// WatertightTriangleTest built from `ray` (taken by value instead, so that no pointer to it
-// stays live, the walk ran 4-17 % slower). The earlier hit comes in as two scalars, not as
-// a Hit by value: GCC 12 assembled that argument on the stack from 4-byte stores and read it
-// back as two 8-byte halves for the registers, a load that no store can forward, once per
-// ray (1.4 % of the samples of bench_trace's fast primary rays on the bunny, on that one
-// load; in the timings, within their noise).
+// WatertightTriangleTest built from `ray` (taken by reference: by value, GCC 12 keeps a
+// copy in memory). The earlier hit comes in as two scalars, not as a Hit by value: GCC 12
+// assembles that argument on the stack from 4-byte stores and reads it back as two 8-byte
+// halves, a load that no store can forward.
 template <int N, class Test, bool Finite, bool Count>
 inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                  const Ray& ray, const RayPre& pre, const Test& test,
@@ -338,8 +309,7 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
         prefetch_ref(nodes, blocks, ref);
         continue;
       }
-      // Three or more (one node in eight here) in the 4-wide tree: sorted by entry
-      // distance, farthest first. (A branch-free network for three measured slower.)
+      // Three or more in the 4-wide tree: sorted by entry distance, farthest first.
       StackEntry hit[N];
       int k = 0;
       for (unsigned m = mask; m; m &= m - 1) {
@@ -380,13 +350,11 @@ inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blo
 // Whether `ray` may meet the tree within [t_min, t_max]: its origin lies in the tree's box
 // (WideBvh::bounds), or it enters the box by the slab test the binary tree's walk makes (aabb.h:
 // conservative, so no triangle hit is lost). A ray that misses the box then costs neither the
-// walk's per-ray set-up (the node ray's constants, the walk's frame) nor its first node test.
-// Camera rays miss a mesh's box wherever it does not fill the image: bench_trace's primary rays
-// (three in four miss the mesh) went from 495 to 380 instructions a ray on the dragon (callgrind,
-// AVX2 kernels; Embree's rtcIntersect1 370) and ran 3-19 % faster on the four bench-peer meshes.
-// The origin test comes first: rays that start inside the box (from a surface, as reflections do)
-// pay two compares, not the slab test. The closest-hit walk only: shadow rays leave surfaces, and
-// in the any-hit walk the test cost them 1.6-2.5 %.
+// walk's per-ray set-up (the node ray's constants, the walk's frame) nor its first node test:
+// camera rays miss a mesh's box wherever it does not fill the image. The origin test comes
+// first: rays that start inside the box (from a surface, as reflections do) pay two compares,
+// not the slab test. The closest-hit walk only: shadow rays leave surfaces, and there the test
+// costs more than it saves.
 template <int N>
 MLIB_INLINE bool may_enter(const WideBvh<N>& bvh, const Ray& ray, const RayPre& pre, float t_min,
                            float t_max) {
@@ -450,8 +418,7 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
         if (rest & (rest - 1)) {  // three or more: pushed in one step, in the order of the
                                   // opposite octant, so the farthest is walked first (an
                                   // occluder often lies toward the light rather than beside
-                                  // the surface a shadow ray leaves: 5-10 % faster on two
-                                  // of the four bench_trace meshes, 1-3 % slower on two)
+                                  // the surface a shadow ray leaves)
           alignas(64) float unused_t[N];
           sp += std::size_t(compress_in_order(entry, node.child, node.octant_order,
                                               kOrderBits<N> * 7 - nr.order_shift, mask, unused_t,

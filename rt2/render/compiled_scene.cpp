@@ -20,8 +20,8 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
   c.accel = Accel::build(scene, config, isa);
   c.times.accel_ms = ms_since(t);
   c.materials = scene.materials;
-  // Shadow rays pass physically based materials by their transmission (query.h reads
-  // `transparency`; the pbr shading step never does).
+  // Shadow rays pass physically based materials by their transmission (the kernel's
+  // transmittance reads `transparency`; the pbr shading step never does).
   bool pbr = false;
   for (Material& m : c.materials)
     if (m.model == Shading::pbr) {

@@ -1,12 +1,12 @@
 // rt2/render/compiled_scene.h — a scene made ready to render: built once, then only read, by any
 // number of threads and frames.
 //
-// A Scene (scene.h) is the description a loader fills: a camera, materials, lights and
+// A Scene (scene/scene.h) is the description a loader fills: a camera, materials, lights and
 // geometry as the file gave them. Compiling it moves what rendering needs into one owner:
 // the geometry in trace order with its acceleration structures (Accel: planes, the spheres'
 // tree, the triangles' wide tree for the chosen instruction set), the materials, the
 // lights and the constants of shading. The camera is not part of it: where to look from,
-// at what size and with which settings is the View (view.h), chosen per frame.
+// at what size and with which settings is the View (render/settings.h), chosen per frame.
 #pragma once
 
 #include <cstddef>

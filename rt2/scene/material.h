@@ -51,7 +51,7 @@ struct Material {
   // MTL's map_Kd), sRGB-encoded; metallic_roughness_texture is linear, roughness in G and
   // metallic in B, multiplying the factors; normal_texture a tangent-space normal map;
   // emissive_texture multiplies emissive, sRGB-encoded. A texture needs texture coordinates
-  // (meshes' texcoords; spheres and planes have their own, see batches.h).
+  // (meshes' texcoords; spheres and planes have their own: rt2/kernel/surface_point.h).
   std::uint32_t base_color_texture = kNoTexture;
   std::uint32_t metallic_roughness_texture = kNoTexture;
   std::uint32_t normal_texture = kNoTexture;

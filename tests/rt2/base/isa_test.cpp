@@ -13,6 +13,7 @@
 #include "rt2/base/error.h"
 #include "rt2/base/isa.h"
 #include "rt2/render/kernel_table.h"
+#include "rt2/render/trace_kernels.h"
 #include "tests/rt2/test_util.h"
 
 namespace rt2 {
@@ -22,7 +23,8 @@ TEST(Isa, TheBestIsTheWidestTheCpuRunsAndNamesRoundTrip) {
   const Isa best = best_isa();
   EXPECT_TRUE(isa_supported(best));
   for (Isa isa : built_isas()) {
-    EXPECT_EQ(isa_kernels(isa).isa, isa);
+    EXPECT_EQ(render_kernels(isa).isa, isa);
+    EXPECT_EQ(trace_kernels(isa).isa, isa);
     if (!isa_supported(isa)) continue;
     EXPECT_LE(static_cast<int>(isa), static_cast<int>(best));
     EXPECT_EQ(parse_isa(isa_name(isa)), isa);

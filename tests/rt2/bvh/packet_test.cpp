@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "rt2/render/kernel_table.h"
 #include "rt2/scene/shapes.h"
 #include "rt2/render/trace.h"
 #include "tests/rt2/test_util.h"
@@ -349,7 +348,6 @@ TEST(Packets, ColumnPacketsOfAnyLanesEqualSingleRaysBitForBit) {
   std::size_t checked = 0, hits = 0, partial = 0;
   for (Isa isa : test::runnable_isas()) {
     const Accel acc = Accel::build(scene, BvhConfig{}, isa);
-    const auto& kernels = isa_kernels(isa);
     for (bool watertight : {false, true}) {
       const TraceOptions opt{watertight};
       std::vector<Hit> single(kRays);
@@ -366,10 +364,9 @@ TEST(Packets, ColumnPacketsOfAnyLanesEqualSingleRaysBitForBit) {
         Hit hit[16];
         float pass[16];
         for (int l = 0; l < 16; ++l) pass[l] = -1.0f;
-        kernels.trace_closest_columns[watertight](acc, columns, first, lanes, t_max.data() + first,
-                                                  hit);
-        kernels.trace_transmittance_columns[watertight](acc, scene.materials, columns, first,
-                                                        lanes, t_max.data() + first, pass);
+        trace_closest_columns(acc, opt, columns, first, lanes, t_max.data() + first, hit);
+        trace_transmittance_columns(acc, scene.materials, opt, columns, first, lanes,
+                                    t_max.data() + first, pass);
         for (int l = 0; l < 16; ++l) {
           if (!(lanes >> l & 1)) continue;
           const std::size_t i = first + std::size_t(l);

@@ -16,7 +16,6 @@
 #include "rt2/scene/builtin_scene.h"
 #include "rt2/render/compiled_scene.h"
 #include "rt2/image/image_compare.h"
-#include "rt2/render/kernel_table.h"
 #include "rt2/geometry/offset.h"
 #include "rt2/geometry/optics.h"
 #include "rt2/render/schedule.h"
@@ -370,7 +369,7 @@ TEST(RenderCore, ATileResolvesToTheWholeFilmsBitsAndClearsAlone) {
 // ---- a depth-first Whitted tracer over the public queries: the oracle --------------------
 
 // Transparency of everything on the segment (0, t_max), each surface crossing counted, by
-// testing every primitive (brute force), as query.h defines it.
+// testing every primitive (brute force), as rt2/kernel/closest_hit.h defines it.
 float transmittance_brute(const CompiledScene& c, const Ray& r, float t_max) {
   const Accel& a = c.accel;
   float tr = 1.0f;
@@ -396,7 +395,7 @@ vec4 trace_depth_first(const CompiledScene& c, const RenderSettings& st, const R
                        float weight, int depth) {
   const Hit h = trace_closest(c.accel, ray);
   if (!h.found()) return weight * c.background;
-  // The surface, as the kernel finds it (tracer.h).
+  // The surface, as the kernel finds it (rt2/kernel/surface_point.h).
   const Accel& a = c.accel;
   vec4 p, ng, ns;
   const std::uint32_t i = prim_index(h.prim);
@@ -482,7 +481,7 @@ TEST(RenderCore, PrimaryRaysEqualCameraRayBitForBitOnEveryIsa) {
             const std::size_t n = block.pixels() * std::size_t(s1 - s0);
             std::vector<Ray> rays(n);
             std::vector<std::uint32_t> samples(n);
-            isa_kernels(isa).primary_rays(r, block, s0, s1, rays.data(), samples.data());
+            primary_rays(isa, r, block, s0, s1, rays.data(), samples.data());
             std::vector<int> seen(n, 0);
             for (std::size_t i = 0; i < n; ++i) {
               const std::uint32_t sample = samples[i];

@@ -1,39 +1,28 @@
-// rt2/kernel/pbr_shade.h — the render kernel's shading step for physically based materials
-// (Material::model == Shading::pbr): glTF 2.0's metallic-roughness model with the
-// Cook-Torrance GGX BRDF of rt2/shading/brdf.h, the text's (reference/pbr-chapter.txt) pipeline
-// on a ray tracer's hits:
-//   - textures first: base colour, metallic-roughness, emissive and the normal map at the
-//     hit's texture coordinates, filtered over the footprint of the pixel's cone at the hit
-//     (of the ray's own segment for a secondary hit; texture.h);
-//   - emitted light, and the light from far away (the environment, or the scene's ambient
-//     colour from every direction when it has none): specular from the roughness-indexed
-//     prefiltered map times the lobe's albedo E(v) = F0 A + B (the split sum,
-//     environment.h, brdf_lut.h), diffuse (1 - metallic)(1 - E(v)) base times the
-//     irradiance E/pi (9 spherical harmonics), the share brdf.h's energy-conserving kD
-//     gives it (the text's kD = 1 - F_roughness(n·v) would let a white sphere under a white
-//     sky outshine it);
-//   - every light in range through the BRDF, f(l, v) (n·l) times its radiance, into the
-//     shadow batch like Phong's terms (with the same range window);
-//   - secondary rays: a smooth surface (roughness <= kMirrorRoughness) reflects a mirror
-//     ray weighted by Schlick's Fresnel F(n·v) instead of the prefiltered map, so the
-//     Whitted recursion sees the scene in it; a transmissive one refracts the rest,
-//     (1 - F) transmission (1 - metallic) base colour. Rough surfaces take their reflected
-//     light from the environment only (a ray tracer without sampling cannot integrate a
-//     glossy lobe over the scene).
-// Transmission takes its share from the diffuse colour, as glTF's KHR_materials_transmission
-// mixes the diffuse and transmission lobes.
+// rt2/kernel/pbr.h — physically based shading of one hit (Material::model == Shading::pbr):
+// glTF 2.0's metallic-roughness model with the Cook-Torrance GGX BRDF of shading/brdf.h,
+// reference/pbr-chapter.txt's pipeline on a ray tracer's hits. Textures are filtered over
+// the pixel cone's footprint at the hit; emission, the environment's light (the split sum:
+// the prefiltered map times the lobe's albedo, and 9 spherical harmonics for the diffuse
+// part, with brdf.h's energy-conserving kD) and every light through the BRDF. A smooth
+// surface (roughness <= kMirrorRoughness) reflects a mirror ray weighted by Schlick's
+// Fresnel instead of the prefiltered map, so the Whitted recursion sees the scene in it; a
+// transmissive one refracts (1 - F) transmission (1 - metallic) of its base colour
+// (KHR_materials_transmission). Rough surfaces reflect the environment only.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
-#include "rt2/kernel/batches.h"
-#include "rt2/shading/brdf.h"
-#include "rt2/render/compiled_scene.h"
+#include "rt2/kernel/kernel.h"
+
+#include "rt2/geometry/offset.h"
 #include "rt2/geometry/optics.h"
+#include "rt2/kernel/batches.h"
+#include "rt2/kernel/light_terms.h"
 #include "rt2/render/renderer.h"
+#include "rt2/shading/brdf.h"
 
 namespace rt2::RT2_ISA {
-namespace detail {
 
 // The roughness at or below which a surface is a mirror for the Whitted recursion.
 inline constexpr float kMirrorRoughness = 0.05f;
@@ -115,13 +104,13 @@ inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const Surf
                   m.transmission * (1.0f - metallic)};
 }
 
-// Stage 3 for one physically based hit: emission and environment light into the sample's
-// colour at once, every light's BRDF term into the shadow batch (see shade).
-// `last` says that the ray is at the depth limit: a mirror then shows the prefiltered
-// environment instead of the ray it cannot spawn (rather than nothing, as Phong's does).
-inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
-                      LightList lights, float pixel_angle, bool last, Batches& b,
-                      RayCounts& counts, PbrPoint& out) {
+// Emission and the light from far away into the sample's colour now, every light's BRDF
+// term into the shadow batch (light_terms.h). `last` says that the ray is at the depth
+// limit: a mirror then shows the prefiltered environment instead of the ray it cannot spawn
+// (rather than nothing, as Phong's does).
+inline void pbr_lights(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
+                       LightList lights, float pixel_angle, bool last, Batches& b,
+                       RayCounts& counts, PbrPoint& out) {
   const Material& m = sc.materials[s.material];
   const vec4 view = -r.ray.dir;
   out = pbr_point(sc, m, s, view, pixel_angle);
@@ -138,28 +127,14 @@ inline void shade_pbr(const CompiledScene& sc, const PathRay& r, const SurfacePo
   b.colors[r.sample] += weight * local;
   ++counts.lights.points;
   counts.lights.considered += lights.count;
-  const vec4& origin = s.above;
-  for (std::size_t k = 0; k < lights.count; ++k) {
-    const std::uint32_t li = lights[k];
-    const Light& light = sc.lights[li];
-    const vec4 to = light.position - origin;
-    const float dist = std::sqrt(float(dot(to, to)));
-    if (!in_range(light, dist)) continue;
-    ++counts.lights.in_range;
-    const vec4 l = to / dist;
-    if (!(dot(l, s.ng) > 0.0f)) continue;  // the light is behind the surface (or at p)
-    const float n_dot_l = dot(p.n, l);
-    if (!(n_dot_l > 0.0f)) continue;
-    const bool unoccluded = lights.sees && lights.sees[k];
-    ++(unoccluded ? counts.lights.unoccluded : counts.shadow);
-    const vec4 term = brdf(p.surface, p.n, view, l, e_v) * n_dot_l;
-    push_shadow_ray(b, origin, l, dist, weight, term, light, li, r.sample, unoccluded);
-  }
+  add_light_terms(sc, r, s, p.n, lights, b, counts, [&](const vec4& l, float n_dot_l) -> vec4 {
+    return brdf(p.surface, p.n, view, l, e_v) * n_dot_l;
+  });
 }
 
-// Stage 3's secondary rays of a physically based hit: the mirror ray of a smooth surface
-// and the refracted ray of a transmissive one (see the header).
-inline void spawn_pbr(const CompiledScene& sc, const RenderSettings& st, int depth,
+// The secondary rays: the mirror ray of a smooth surface and the refracted ray of a
+// transmissive one.
+inline void pbr_spawn(const CompiledScene& sc, const RenderSettings& st, int depth,
                       const PathRay& r, const SurfacePoint& s, const PbrPoint& p, Batches& b,
                       RayCounts& counts) {
   if (depth >= st.depth) return;
@@ -188,18 +163,15 @@ inline void spawn_pbr(const CompiledScene& sc, const RenderSettings& st, int dep
   }
 }
 
-// Stage 3 for one physically based hit: shade_pbr, then spawn_pbr. Not inlined into the
-// kernel's loop over hits, which stays the Phong path's (inlined, the step cost ~4 % more
-// instructions on the thesis scene).
-[[gnu::noinline]] inline void shade_and_spawn_pbr(const CompiledScene& sc, const RenderSettings& st,
-                                                  int depth, const PathRay& r,
-                                                  const SurfacePoint& s, LightList lights,
-                                                  float pixel_angle, Batches& b,
-                                                  RayCounts& counts) {
+// A physically based hit: its light now and in the shadow batch, and its secondary rays.
+// Kept out of the kernel's loop over hits, which stays the Phong path's.
+[[gnu::noinline]] inline void shade_pbr(const CompiledScene& sc, const RenderSettings& st,
+                                        int depth, const PathRay& r, const SurfacePoint& s,
+                                        LightList lights, float pixel_angle, Batches& b,
+                                        RayCounts& counts) {
   PbrPoint p;
-  shade_pbr(sc, r, s, lights, pixel_angle, depth >= st.depth, b, counts, p);
-  spawn_pbr(sc, st, depth, r, s, p, b, counts);
+  pbr_lights(sc, r, s, lights, pixel_angle, depth >= st.depth, b, counts, p);
+  pbr_spawn(sc, st, depth, r, s, p, b, counts);
 }
 
-}  // namespace detail
 }  // namespace rt2::RT2_ISA

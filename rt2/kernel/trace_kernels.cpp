@@ -1,11 +1,15 @@
-// rt2/kernel/isa_kernels.cpp — the per-instruction-set translation unit: the build compiles it
-// once per set, with -DRT2_ISA=<name> and that set's flags, and nothing else gets those
-// flags (rt2/base/isa.h). Everything defined here is in rt2::RT2_ISA.
-#include "rt2/render/kernel_table.h"
+// rt2/kernel/trace_kernels.cpp — the queries' table behind render/trace.h (for tests and
+// benchmarks) for the instruction set this copy is compiled for: arrays of rays, packets
+// and batch columns through the kernel's queries, and the primary rays of a block.
+#include "rt2/kernel/kernel.h"
 
 #include <algorithm>
 
-#include "rt2/kernel/tracer.h"
+#include "rt2/kernel/any_hit.h"
+#include "rt2/kernel/closest_hit.h"
+#include "rt2/kernel/generate.h"
+#include "rt2/kernel/transmittance.h"
+#include "rt2/render/trace_kernels.h"
 
 namespace rt2::RT2_ISA {
 
@@ -76,8 +80,8 @@ void trace_transmittance_packets(const Accel& acc, const std::vector<Material>& 
 
 void primary_rays(const Renderer& r, const Tile& block, int s0, int s1, Ray* rays,
                   std::uint32_t* samples) {
-  static thread_local detail::Batches b;
-  detail::generate(r, block, s0, s1, b);
+  static thread_local Batches b;
+  generate(r, block, s0, s1, b);
   for (std::size_t i = 0; i < b.rays.size(); ++i) {
     rays[i] = b.rays.ray(i);
     samples[i] = b.rays[i].sample;
@@ -99,19 +103,18 @@ void trace_transmittance_columns(const Accel& acc, const std::vector<Material>& 
 
 }  // namespace
 
-const IsaKernels& kernels() {
-  static const IsaKernels table{
-      Isa::RT2_ISA,  // the namespaces are named as the enumerators
-      &primary_rays,
-      {&trace_closest_columns<false>, &trace_closest_columns<true>},
-      {&trace_transmittance_columns<false>, &trace_transmittance_columns<true>},
-      {&render_tile_kernel<false>, &render_tile_kernel<true>},
+const TraceKernels& trace_kernels() {
+  static const TraceKernels table{
+      kIsa,
       {&trace_closest<false>, &trace_closest<true>},
       {&trace_occluded<false>, &trace_occluded<true>},
+      {&trace_transmittance<false>, &trace_transmittance<true>},
       {&trace_closest_packets<false>, &trace_closest_packets<true>},
       {&trace_occluded_packets<false>, &trace_occluded_packets<true>},
-      {&trace_transmittance<false>, &trace_transmittance<true>},
       {&trace_transmittance_packets<false>, &trace_transmittance_packets<true>},
+      {&trace_closest_columns<false>, &trace_closest_columns<true>},
+      {&trace_transmittance_columns<false>, &trace_transmittance_columns<true>},
+      &primary_rays,
   };
   return table;
 }
