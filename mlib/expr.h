@@ -1,19 +1,12 @@
 // mlib/expr.h — expression-template nodes over four-float SIMD values.
 //
-// `a + b * dot(c, d) - 0.5f * e` does not compute anything when it is written: it builds a
-// tree of the node types below, whose operands are held by value (a leaf is 16 bytes, so
-// the copy is a register move after inlining and an expression can never dangle). The tree
-// is evaluated once, lane-parallel, by `eval()` when it is assigned to a vec4 or converted
-// to float; with every `eval` forced inline, what is left is the bare SSE instruction
-// sequence: no temporaries in memory and no calls.
-//
-// Three layers are kept apart: the intrinsics (mlib/simd.h), the operations (mlib/ops.h)
-// and the node shapes here. There is one generic unary and one generic binary node.
-//
-// A node is *scalar* when all four lanes are known to hold the same value (a dot product,
-// a float operand, lane-wise arithmetic of those). A scalar node converts implicitly to
-// float (`float d = dot(a, b);`), and in vector arithmetic it is used as the broadcast
-// value, so `n * dot(n, i)` needs no shuffle.
+// `a + b * dot(c, d) - 0.5f * e` computes nothing when written: it builds a tree of the
+// node types below, operands held by value (a leaf is 16 bytes, so the copy is a register
+// move after inlining and an expression can never dangle). The tree is evaluated once,
+// lane-parallel, by `eval()` when assigned to a vec4 or converted to float; with every
+// `eval` forced inline, what is left is the bare SSE instruction sequence: no temporaries
+// in memory and no calls. Three layers are kept apart: the intrinsics (mlib/simd.h), the
+// operations (mlib/ops.h) and the node shapes here (one generic unary, one binary node).
 #pragma once
 
 #include <type_traits>
@@ -21,6 +14,11 @@
 #include "mlib/ops.h"
 
 namespace mlib {
+
+// A node is *scalar* when all four lanes are known to hold the same value (a dot product,
+// a float operand, lane-wise arithmetic of those). A scalar node converts implicitly to
+// float (`float d = dot(a, b);`), and in vector arithmetic it is used as the broadcast
+// value, so `n * dot(n, i)` needs no shuffle.
 
 // Every expression node, and vec4 itself, declares `using expr_tag = void;`. (A member
 // tag rather than a common base class: two subobjects of one empty base could not share an

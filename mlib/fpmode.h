@@ -1,16 +1,13 @@
 // mlib/fpmode.h — the calling thread's floating-point mode: flushing denormals to zero.
 //
 // Ray tracers run with FTZ (a result that would be denormal becomes 0) and DAZ (a denormal
-// input is read as 0): on many x86 cores an operation on a denormal costs a microcode
-// assist of ~100 cycles, and a grazing ray or a tiny triangle produces them. Embree sets
-// both in its own threads and asks applications to set them in theirs. The mode lives in
-// the MXCSR register, which is per thread: a program sets it in every thread that
-// computes, e.g. at the start of each task a worker runs.
-//
-// Beside mlib/simd.h this is the only mlib file with intrinsics (MXCSR is thread state, not
-// four-float arithmetic, so it is not part of the simd API that simd_scalar.h mirrors). It
-// applies to the scalar build (arch=scalar) too: x86-64 does scalar float arithmetic in SSE
-// registers, under the same MXCSR.
+// input is read as 0): on many x86 cores an operation on a denormal takes a microcode
+// assist, and grazing rays and tiny triangles produce them. Embree sets both in its threads
+// and asks applications to do the same. The mode lives in MXCSR, which is per thread: set
+// it in every thread that computes, e.g. at the start of each task a worker runs. Beside
+// mlib/simd.h the only mlib file with intrinsics (MXCSR is thread state, not part of the
+// simd API that simd_scalar.h mirrors); it applies to arch=scalar too, whose scalar float
+// arithmetic runs in SSE registers under the same MXCSR.
 #pragma once
 
 #include <pmmintrin.h>  // _MM_SET_DENORMALS_ZERO_MODE (the macro only reads and writes MXCSR)

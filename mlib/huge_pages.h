@@ -5,19 +5,9 @@
 // larger than the TLB covers in 4 KiB pages (a few thousand entries: some megabytes), most
 // of those reads first walk the page table; with 2 MiB pages a hundred megabytes of tree
 // needs fifty entries. Linux backs an anonymous mapping with transparent huge pages when
-// the program asks for them with madvise(MADV_HUGEPAGE), which Debian's default policy
-// ("madvise") requires; Embree asks the same for its trees. Where the kernel has them
-// disabled, or on another system, the memory is ordinary memory, only aligned.
-//
-// Arrays smaller than one huge page take ordinary pages (aligned to T), so that small trees
-// cost no more memory than before, from oneTBB's scalable allocator (tbbmalloc) rather
-// than from the C library: glibc hands a freed block of a few hundred kilobytes back to the
-// system, and the next build takes every page of it again as a fresh one (a fault and a
-// page of zeros each), while tbbmalloc keeps freed blocks for the next request. A tree
-// rebuilt over and over, as bench_trace's build does and an animated scene would, paid for
-// that: the dragon's 20 000 triangles took some 830 page faults per build, 1.3-2 ms of a
-// 5-7 ms build. In a sanitized build the blocks come from operator new, which
-// AddressSanitizer watches.
+// the program asks with madvise(MADV_HUGEPAGE), which Debian's default policy ("madvise")
+// requires; Embree does the same for its trees. Without THP the memory is only aligned.
+// Arrays below one huge page take ordinary pages (allocate_small).
 #pragma once
 
 #include <cstddef>
@@ -55,8 +45,13 @@ inline void* allocate_huge(std::size_t bytes) {
   return p;
 }
 
-// `bytes` (> 0) aligned to `align`, below one huge page: from tbbmalloc, or from operator new
-// in a sanitized build (see above). Freed with free_small(p, align).
+// `bytes` (> 0) aligned to `align`, below one huge page (ordinary pages, so small trees
+// take no more memory than their size). From oneTBB's scalable allocator rather than the C
+// library: glibc hands a freed block of a few hundred kilobytes back to the system, and the
+// next build takes every page of it again as a fresh one (a fault and a page of zeros
+// each), while tbbmalloc keeps freed blocks for the next request, which matters to a tree
+// rebuilt over and over. In a sanitized build from operator new, which AddressSanitizer
+// watches. Freed with free_small(p, align).
 #if defined(__SANITIZE_ADDRESS__)
 inline void* allocate_small(std::size_t bytes, std::size_t align) {
   return ::operator new(bytes, std::align_val_t{align});

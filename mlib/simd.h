@@ -78,13 +78,13 @@ MLIB_INLINE f4 blend(f4 mask, f4 if_false, f4 if_true) {
 // In the translation units of the AVX2 and AVX-512 ray kernels (the build defines
 // MLIB_SHUFFLED_DOT for them alone, rt2/base/isa.h), dp_bcast is one multiply and two
 // shuffle-adds instead, every lane summing (x x' + y y') + (z z' + w w') with its operands
-// in that order: the same bits (dpps, four micro-ops with a long latency, made the kernel's
-// hit shading slower: headline frame +2.5 % without it). The baseline keeps dpps, the
-// thesis's form (tests/mlib/asm_test.cpp counts its instructions), also where it is built
-// with AVX2 (scons arch=native). Each form lives in an inline namespace of its own, so the
-// two dp_bcast never share a symbol; their callers (vec4's dot, normalize, ...) are
-// always-inline, so no out-of-line copy of one is ever shared either (tests/rt2/base/isa_test.cpp
-// checks that no wide instruction leaves the wide units).
+// in that order: the same bits, without dpps's four micro-ops and long latency, which slow
+// the kernel's hit shading. The baseline keeps dpps, the thesis's form
+// (tests/mlib/asm_test.cpp counts its instructions), also where it is built with AVX2
+// (scons arch=native). Each form lives in an inline namespace of its own, so the two
+// dp_bcast never share a symbol; their callers (vec4's dot, normalize, ...) are
+// always-inline, so no out-of-line copy of one is ever shared either
+// (tests/rt2/base/isa_test.cpp checks that no wide instruction leaves the wide units).
 #if defined(MLIB_SHUFFLED_DOT)
 inline namespace shuffled_dot {
 MLIB_INLINE f4 dp_bcast(f4 a, f4 b) {

@@ -1,21 +1,11 @@
 // mlib/simd_scalar.h — mlib's four-float type without SIMD: plain C++, lane by lane.
 //
-// The same API as the SSE wrappers in mlib/simd.h (same names, signatures and documented
+// The same API as the SSE wrappers in mlib/simd.h (names, signatures and documented
 // semantics), selected there when MLIB_SCALAR is defined (scons arch=scalar). It is the
 // "no SIMD" rung of the thesis's speed-up ladder, so it must be honest scalar code: no
 // intrinsics, no vector types, no <immintrin.h>; the build also forbids the compiler to
-// vectorise (-fno-tree-vectorize -fno-tree-slp-vectorize). Each function mirrors the exact
-// SSE instruction it replaces, so both builds compute the same bits wherever IEEE fixes
-// them: the same operand order and summation order, and the same NaN and signed-zero rules:
-//   min(a, b) / max(a, b) return b in a lane where either operand is NaN (minps / maxps),
-//   and b for min(+0, -0) too, because the test is a strict `a < b`;
-//   comparisons return lane masks of all-one or all-zero bits (cmpps), so masks can be
-//   combined with bit_and / bit_andnot and consumed by blend / movemask unchanged;
-//   dp_* sums as dpps does: (x*x' + y*y') + (z*z' + w*w').
-// Bit operations go through std::bit_cast, never through a float, so NaN payloads and the
-// all-ones mask pattern survive. Which NaN comes out of arithmetic on two NaNs is left open
-// by IEEE and may differ from the SSE build (x86 returns the first operand's, and the
-// compiler may commute a * b); where the result is NaN is the same.
+// vectorise (-fno-tree-vectorize -fno-tree-slp-vectorize). Both builds compute the same
+// bits wherever IEEE fixes them (see below).
 //
 // Include mlib/simd.h, not this file: it defines MLIB_INLINE and makes the choice.
 #pragma once
@@ -29,6 +19,18 @@
 #include <cstdint>
 
 namespace mlib::simd {
+
+// Each function computes the bits of the SSE instruction it mirrors wherever IEEE fixes
+// them: the same operand order and summation order, and the same NaN and signed-zero rules:
+//   min(a, b) / max(a, b) return b in a lane where either operand is NaN (minps / maxps),
+//   and b for min(+0, -0) too, because the test is a strict `a < b`;
+//   comparisons return lane masks of all-one or all-zero bits (cmpps), so masks can be
+//   combined with bit_and / bit_andnot and consumed by blend / movemask unchanged;
+//   dp_* sums as dpps does: (x*x' + y*y') + (z*z' + w*w').
+// Bit operations go through std::bit_cast, never through a float, so NaN payloads and the
+// all-ones mask pattern survive. Which NaN comes out of arithmetic on two NaNs is left open
+// by IEEE and may differ from the SSE build (x86 returns the first operand's, and the
+// compiler may commute a * b); where the result is NaN is the same.
 
 // 16-byte aligned like __m128, so vec4 keeps its size, alignment and layout in both builds.
 struct alignas(16) f4 {

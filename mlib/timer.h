@@ -1,21 +1,13 @@
-// mlib/timer.h — a cycle-accurate interval timer (thesis 5.2).
+// mlib/timer.h — a cycle-accurate interval timer (thesis 5.2); method names follow the
+// thesis's Timer (Start, Stop, Reset, ...).
 //
 // Start() serialises with `cpuid` and then reads the time-stamp counter (`rdtsc`); Stop()
 // reads it with `rdtscp`, which waits for all earlier instructions, and then runs `cpuid`
 // so that later instructions cannot move into the measured interval. Each Start/Stop pair
-// is one interval ("lap"); the timer keeps the sum, minimum, maximum and count of laps and
-// reports one of them according to its Mode (avg = sum / count).
-//
-// Ticks become seconds with the TSC frequency, which the default constructor measures
-// itself: the counter is compared with std::chrono::steady_clock over 50 ms, once per
-// process (later Timers reuse the figure), so the first construction takes about 50 ms and
-// never more than ~60 ms. The other constructor takes the frequency and does not wait.
-//
-// On a CPU without `rdtscp` (CPUID 0x80000001:EDX bit 27) the timer falls back to
-// steady_clock, counts nanoseconds as ticks (frequency 1e9), and says so once on stderr.
-// Clock::steady asks for that fallback explicitly.
-//
-// Method names follow the thesis's Timer (Start, Stop, Reset, ...).
+// is one lap; the timer keeps the sum, minimum, maximum and count of laps and reports one
+// of them according to its Mode (avg = sum / count). Without `rdtscp` (CPUID
+// 0x80000001:EDX bit 27) it falls back to steady_clock, counts nanoseconds as ticks
+// (frequency 1e9), and says so once on stderr; Clock::steady asks for that fallback.
 #pragma once
 
 #include <chrono>
@@ -29,8 +21,9 @@ class Timer {
   enum class Mode { sum, min, max, avg };
   enum class Clock { tsc, steady };
 
-  // Calibrates the TSC frequency (50 ms, once per process). Clock::tsc falls back to
-  // steady when rdtscp is missing.
+  // Calibrates the TSC frequency: the counter against std::chrono::steady_clock over 50 ms,
+  // once per process (later Timers reuse the figure), so only the first construction waits.
+  // Clock::tsc falls back to steady when rdtscp is missing.
   explicit Timer(Mode mode = Mode::sum, Clock clock = Clock::tsc);
   // Uses the given TSC frequency in Hz (must be > 0); no calibration.
   Timer(Mode mode, double ticks_per_second);

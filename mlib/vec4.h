@@ -5,7 +5,14 @@
 // expression tree, and assigning the tree to a vec4 evaluates it once. Every constructor
 // and compound operator accepts an expression as well as a vec4 or a float. The free
 // functions (dot, cross, normalize, clamp, abs, ...) are in mlib/vec4_functions.h.
-//
+#pragma once
+
+#include <cstddef>
+
+#include "mlib/expr.h"
+
+namespace mlib {
+
 // Conventions and edge semantics (tested in tests/mlib/):
 // * Lanes are x y z w. rt2 stores 3D points and directions with w = 0, so the four-lane
 //   dot product of the thesis (dpps) is the 3D one; the 3-argument constructor sets w = 0.
@@ -21,14 +28,6 @@
 //   ordered IEEE semantics: any NaN lane makes them false, except != which is !(==).
 //   +0 == -0. They are not a strict weak order: do not sort vec4s with them.
 // * clamp maps NaN lanes to the lower bound; to_color maps NaN to 0.
-#pragma once
-
-#include <cstddef>
-
-#include "mlib/expr.h"
-
-namespace mlib {
-
 class alignas(16) vec4 {
  public:
   using expr_tag = void;  // a leaf of the expression templates

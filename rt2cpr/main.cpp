@@ -105,11 +105,10 @@ namespace {
 
 // The viewer's render threads share the machine with the window's thread and the display
 // server, which need a little CPU between two frames. OpenMP's threads spin-wait for the
-// next parallel region by default, taking that time away: on 2 cores the viewer showed 26.9
-// frames/s with OMP_WAIT_POLICY=active and 40.4 with passive (scripts/bench-viewer). libgomp
-// reads the policy once, when it is loaded, so `--interactive` starts the program again with
-// it set, unless the user chose a policy. (Under valgrind /proc/self/exe is valgrind's
-// tool: set OMP_WAIT_POLICY there.)
+// next parallel region by default, taking that time away and lowering the frame rate, so
+// the viewer runs with OMP_WAIT_POLICY=passive. libgomp reads the policy once, when it is
+// loaded, so `--interactive` starts the program again with it set, unless the user chose a
+// policy. (Under valgrind /proc/self/exe is valgrind's tool: set OMP_WAIT_POLICY there.)
 void exec_with_passive_openmp(int argc, char** argv) {
   bool interactive = false;
   for (int i = 1; i < argc; ++i) interactive |= std::string_view(argv[i]) == "--interactive";

@@ -29,7 +29,7 @@ struct Options {
   std::string preset;  // low | middle | hard | veryhard, or empty
   rt2::RenderSettings render;
   int lights = -1;     // total light count; -1: the scene's own lights
-  std::optional<rt2::RangeInterval> light_range;  // --light-range (scene.h set_light_count)
+  std::optional<rt2::RangeInterval> light_range;  // --light-range (rt2::set_light_count)
   bool animate_lights = false;  // frame f: lights where their paths are at f / 30 s
   rt2::BvhConfig bvh;
   rt2::Isa isa = rt2::best_isa();  // the ray kernels' instruction set (--isa)

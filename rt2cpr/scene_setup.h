@@ -17,7 +17,8 @@ namespace rt2cpr {
 rt2::Scene load_scene(const Options& o);
 
 // The total light count `lights` (< 0: the scene's own) with --light-range's ranges
-// (scene.h set_light_count). Throws rt2::Error when a range is given but nothing takes it.
+// (rt2/scene/scene.h set_light_count). Throws rt2::Error when a range is given but nothing
+// takes it.
 void set_lights(rt2::Scene& scene, int lights, const std::optional<rt2::RangeInterval>& range);
 
 // `scene` validated, moved so that its camera is at the origin (full float precision where

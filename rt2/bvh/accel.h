@@ -6,7 +6,8 @@
 // nodes of 4, 8 or 16 children, the width of the instruction set chosen for tracing
 // (rt2/base/isa.h), whose leaves are TriangleBlocks of four triangles tested together; `tris`
 // keeps each triangle whole for shading. Spheres (usually few) keep the binary tree. The
-// queries (closest hit, transmittance) are compiled per instruction set: rt2/kernel/query.h.
+// queries (closest hit, transmittance) are compiled per instruction set in the render
+// kernel (rt2/kernel/).
 #pragma once
 
 #include <array>

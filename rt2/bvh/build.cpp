@@ -161,7 +161,7 @@ class Builder {
     for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? float(bins) / extent[a] : 0.0f;
     // Two sets of bins, even primitives into one and odd into the other, merged after:
     // neighbours in the array are neighbours in space and mostly fall into the same bin, so
-    // with one set every update waited for the previous one to reach memory.
+    // with one set each update would wait for the previous one to reach memory.
     Bin* bx = bins_.data();
     Bin* by = bx + 3 * bins;
     std::fill(bx, by + 3 * bins, Bin{});

@@ -67,7 +67,7 @@ class Collapser {
   // its rank, counted without a branch (a sort of eight random keys mispredicts about every
   // other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
   // opposite one). A node of two children keeps the identity order: the walk orders two
-  // children by their distances (wide_traverse.h).
+  // children by their distances (rt2/kernel/wide_traverse.h).
   static void set_octant_orders(WideNode<N>& w, int n) {
     for (int j = 0; j < N; ++j)  // j in each field
       w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
@@ -100,19 +100,15 @@ class Collapser {
   // Which binary nodes become wide nodes, by dynamic programming over the binary tree (Ylitie
   // et al. 2017): the sum of the wide nodes' areas (the surface area heuristic's cost of
   // the inner nodes; the leaves are the binary tree's whatever the choice) is least. The
-  // greedy rule it replaced (open the child of largest area until N are there) fills the
-  // top of a subtree and leaves nodes of two or three children below it: on the dragon of
-  // bench_trace 1,844 8-wide nodes against 1,168 now (Embree's tree: 1,232), 84 bytes per
-  // triangle against 75, and incoherent rays 5-10 % faster with the fast triangle test and
-  // 6-16 % with the watertight one on the four bench-peer meshes (bench_trace, old and new
-  // alternated). Costs summed in float may pick, where two plans nearly tie, one a few ulps
-  // of the cost above the least.
+  // greedy rule of Embree's and tinybvh's converters (open the child of largest area until
+  // N are there) fills the top of a subtree and leaves nodes of two or three children below
+  // it: more nodes, more bytes per triangle and slower incoherent rays. Costs summed in
+  // float may pick, where two plans nearly tie, one a few ulps of the cost above the least.
   // A subtree's costs live only while its parent is planned (the walk is depth first), so what
   // stays is the choice: choice_[m][k] for binary subtree m held in at most k slots of a wide
   // node, the slots the least cost takes (the low kUsedBits) and the slots its first child's
-  // subtree takes (the bits above; 0: m itself in one slot, a wide node of its own). 10 bytes
-  // per binary node (N = 8; a table of the costs too took 55: the plan of a 1.4M-triangle mesh,
-  // 775k binary nodes, touched 43 MB of fresh memory rather than 8).
+  // subtree takes (the bits above; 0: m itself in one slot, a wide node of its own): 10
+  // bytes per binary node for N = 8, where a table of the costs as well would take 55.
   void plan() {
     choice_.assign(bvh_.nodes.size(), {});
     wide_split_.assign(bvh_.nodes.size(), 0);
@@ -128,10 +124,8 @@ class Collapser {
   // cost[k] = cost[L] for k > L, and the search below skips the splits that would give a
   // child more slots than it has leaves: their sums are no less than the split's at the
   // bound (the costs do not increase with k), and where one ties, the smallest split is
-  // taken as the full search would take it, so the tree is the same (nodes, leaves and SAH
-  // statistics of the four bench-peer meshes unchanged for N = 4, 8, 16). With N = 16 the
-  // full search of 120 splits per binary node made the build 10-12 % slower on the bunny and
-  // the elephant (bench_trace, four rounds alternated); this one is as fast as N = 8's.
+  // taken as the full search would take it, so the tree is the same. The skip spares the
+  // N = 16 build most of the full search's 120 splits per binary node.
   using Costs = std::array<float, N + 1>;
   struct Plan {
     Costs cost;

@@ -1,18 +1,13 @@
 // rt2/bvh/wide_bvh.h — the wide BVH rt2 traces: nodes of N = 4, 8 or 16 children whose boxes
 // are stored as structure of arrays, so one SIMD pass tests a ray against all of them (Wald
 // et al. 2008, "Getting Rid of Packets"; Embree's BVH4/BVH8; 16 children for AVX-512 as in
-// Fuetterling et al. 2017), with leaves of triangle blocks.
+// Fuetterling et al. 2017), with leaves of triangle blocks (rt2/geometry/triangle_block.h).
 //
-// It is converted from the binary SAH tree (bvh/build.h) by collapsing: each wide node
-// holds a cut of its binary node's subtree into at most N slots, chosen by dynamic
-// programming over the binary tree so that the sum of the wide nodes' areas (their SAH
-// cost) is least (Ylitie et al. 2017), not by opening the largest child until N are
-// there, as Embree's and tinybvh's converters do (wide_build.cpp). The
-// binary tree's leaves become the wide tree's leaves unchanged, each a run of TriangleBlocks
-// (triangle_block.h), so the max-leaf-size rule of the thesis still holds. Boxes are the
-// binary tree's, padded for conservative traversal (build.cpp).
-//
-// Plain data; the builder makes it, the traversal (wide_traverse.h) reads it.
+// Collapsed from the binary SAH tree (bvh/build.h): each wide node holds a cut of its binary
+// node's subtree into at most N slots, chosen by dynamic programming so that the sum of the
+// wide nodes' areas is least (Ylitie et al. 2017; wide_build.cpp). The binary tree's leaves
+// and padded boxes (build.cpp) are kept, so the thesis's max-leaf-size rule still holds.
+// Plain data; the builder makes it, the traversal (rt2/kernel/wide_traverse.h) reads it.
 #pragma once
 
 #include <cstddef>
@@ -67,7 +62,7 @@ struct WideBvh {
   std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
   // The binary tree's root box (padded, build.cpp), which holds every child box: a ray that
   // misses it (slab_entry, as the binary tree's walk tests it) hits no triangle, and the
-  // closest-hit walk returns before its per-ray set-up (wide_traverse.h, may_enter).
+  // closest-hit walk returns before its per-ray set-up (rt2/kernel/wide_traverse.h, may_enter).
   Aabb bounds;
   std::uint32_t leaves = 0;
   std::uint32_t max_depth = 0;
@@ -75,10 +70,7 @@ struct WideBvh {
   // to next: set by collapse_bvh when nodes and blocks together reach kPrefetchPushedBytes.
   // In a tree far larger than the caches most pushed children are fetched from memory, and
   // asking for all of them at once overlaps the waits; in a tree the L2 holds, the extra
-  // prefetches only cost. Measured with bench_trace (old and new alternated, fast test,
-  // 1 thread): on refined_elephant subdivided to 1.4M triangles (a 100 MB tree) incoherent
-  // rays 7 % faster and reflections 2 %; on the 20k-triangle dragon (1.7 MB) both 2-4 %
-  // slower, on the bunny and the elephant (5-6 MB) within ±3 %.
+  // prefetches only cost.
   bool prefetch_pushed = false;
 };
 
@@ -87,7 +79,7 @@ inline constexpr std::size_t kPrefetchPushedBytes = std::size_t(16) << 20;
 
 // What walks of the tree did, for benchmarks and --stats: inner nodes visited (a packet's
 // frustum test of a node counts once), leaf blocks tested (four triangles each, per ray),
-// and the walks made as packets (packet_traverse.h) with the rays they carried.
+// and the walks made as packets (rt2/kernel/packet_traverse.h) with the rays they carried.
 struct TraversalCounts {
   std::uint64_t nodes = 0, blocks = 0;
   std::uint64_t packets = 0, packet_rays = 0;

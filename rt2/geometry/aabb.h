@@ -43,7 +43,7 @@ struct Aabb {
 
 // 1 + 2 gamma(3) (Ize 2013): how much a rounded slab distance may undershoot the exact
 // one. The far distance is multiplied by it; so is the closest hit when a stored entry
-// distance is compared with it (traverse.h).
+// distance is compared with it (rt2/bvh/traverse.h).
 inline constexpr float kSlabPad = 1.0f + 2.0f * (3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f));
 
 // Slab test of lanes x y z (w is ignored). Returns the entry distance, or +inf for a miss

@@ -3,19 +3,11 @@
 //
 // THE THESIS HAS A BUG: it writes c = 2 (P - C, P - C) - r^2; the constant term of
 // |P + tD - C|^2 = r^2 is c = (P - C, P - C) - r^2.
-//
 // Stability (Haines et al., "Precision Improvements for Ray/Sphere Intersection", Ray
-// Tracing Gems ch. 7): with D unit and oc = P - C, b = D·oc; the discriminant is computed
-// as r^2 - |oc - b D|^2 (the squared distance from the centre to the line subtracted from
-// r^2) instead of b^2 - c, which cancels catastrophically for a small sphere far from the
-// origin; and the two roots come from q = -(b + sign(b) sqrt(disc)) as t = c / q and t = q,
-// so the smaller root is not a difference of nearly equal numbers.
-//
-// Even that form cannot resolve a sphere much smaller than its distance: the perpendicular
-// oc - b D is a difference of two vectors of length |oc| and carries an error of about
-// ulp(|oc|), which for r = 1e-4 at 1e4 (ulp 1e-3) is ten times the radius. When
-// r < |oc| / 100 the test is done in double precision, where the same error is 2^29 times
-// smaller (a rarely taken branch: rays far from a small sphere).
+// Tracing Gems ch. 7): with D unit and oc = P - C, b = D·oc; the discriminant is
+// r^2 - |oc - b D|^2 instead of b^2 - c, which cancels catastrophically for a small sphere
+// far from the origin; the roots come from q = -(b + sign(b) sqrt(disc)) as c / q and q, so
+// the smaller is not a difference of nearly equal numbers.
 #pragma once
 
 #include <cmath>
@@ -30,8 +22,12 @@ struct Sphere {
 };
 
 namespace detail {
-// The nearest root in (t_min, t_max), in double precision (see above); out of line
-// (sphere.cpp), a rarely taken branch.
+// The nearest root in (t_min, t_max), in double precision. Even the stable form cannot
+// resolve a sphere much smaller than its distance: the perpendicular oc - b D is a
+// difference of two vectors of length |oc| and carries an error of about ulp(|oc|), which
+// for r = 1e-4 at 1e4 (ulp 1e-3) is ten times the radius. So when r < |oc| / 100 the test
+// is done here, where the same error is 2^29 times smaller; out of line (sphere.cpp), a
+// rarely taken branch (rays far from a small sphere).
 bool intersect_sphere_double(const Sphere& s, const Ray& r, float t_min, float t_max, float& t);
 }  // namespace detail
 

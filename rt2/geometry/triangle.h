@@ -3,21 +3,8 @@
 //
 // Stored per triangle: the three vertices exactly as given (a shared vertex has the same
 // bits in every triangle, which the watertight test needs) and the unnormalised normal
-// N = E2 x E1.
-//
-// Fast test (thesis formula 10): E1 = V0 - V1, E2 = V2 - V0, T = V0 - P, S = T x Dir,
-// [t, u, v] = [T·N, S·E2, S·E1] / (Dir·N); a hit when u >= 0, v >= 0, u + v <= 1 and t is
-// inside the ray's interval (u >= 0 and v >= 0 tested as the signs of S·E2 and S·E1
-// relative to Dir·N, which is the same but for a quotient that underflows). Branch-free up to the answer; a ray parallel to the triangle
-// divides by zero and every comparison fails. Each triangle rounds its own edges, so a ray
-// through a shared edge or vertex can slip between two triangles.
-//
-// Watertight test: the ray is sheared so that it runs along +z through the origin (a
-// per-ray permutation and shear, WatertightRay); each triangle is projected into that 2D
-// frame and the three edge functions U, V, W are evaluated from the projected vertices.
-// An edge shared by two triangles yields the same products in both, so the signs agree
-// exactly and no ray passes between them; an edge function that is exactly zero is
-// recomputed in double precision, as the paper prescribes.
+// N = E2 x E1. The fast test can let a ray slip between two triangles through a shared
+// edge; the watertight test cannot (each described at its function below).
 #pragma once
 
 #include <cmath>
@@ -42,8 +29,14 @@ struct Triangle {
 };
 static_assert(sizeof(Triangle) == 64);
 
-// The thesis's test. The four dot products (T·N, S·E2, S·E1, Dir·N) are computed together
-// by mlib::dot4 (a transpose instead of four dpps).
+// Fast test (thesis formula 10): E1 = V0 - V1, E2 = V2 - V0, T = V0 - P, S = T x Dir,
+// [t, u, v] = [T·N, S·E2, S·E1] / (Dir·N); a hit when u >= 0, v >= 0, u + v <= 1 and t is
+// inside the ray's interval (u >= 0 and v >= 0 tested as the signs of S·E2 and S·E1
+// relative to Dir·N, which is the same but for a quotient that underflows). Branch-free up
+// to the answer; a ray parallel to the triangle divides by zero and every comparison fails.
+// Each triangle rounds its own edges, so a ray through a shared edge or vertex can slip
+// between two triangles. The four dot products (T·N, S·E2, S·E1, Dir·N) are computed
+// together by mlib::dot4 (a transpose instead of four dpps).
 inline bool intersect(const Triangle& tri, const Ray& r, float t_min, float t_max, float& t,
                       float& u, float& v) {
   const vec4 e1 = tri.v0 - tri.v1;
@@ -92,10 +85,9 @@ struct WatertightRay {
   // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2), kx = kz + 1 and ky = kz + 2
   // (mod 3), swapped when dir[kz] < 0; all read from one table (kWatertightAxes) indexed by
   // the comparisons and signs, without a branch: for random directions both choices go
-  // either way at random, and their mispredicted branches cost watertight incoherent rays
-  // 5-12 % (bench_trace), while a chain of lookups (kz, then kx from kz, ...) delayed the
-  // shear of every ray and slowed primary rays, which predicted the branches, by 2-13 %.
-  // The index takes two vector compares (the six scalar ones took some 20 instructions).
+  // either way at random, and mispredicted branches would slow incoherent rays, while a
+  // chain of lookups (kz, then kx from kz, ...) would delay the shear of every ray. The
+  // index takes two vector compares rather than six scalar ones.
   explicit WatertightRay(const Ray& r) : org(r.org) {
     namespace simd = mlib::simd;
     const simd::f4 d = r.dir.m128(), a = simd::abs(d);
@@ -113,6 +105,12 @@ struct WatertightRay {
   }
 };
 
+// Watertight test: the ray is sheared so that it runs along +z through the origin (a
+// per-ray permutation and shear, WatertightRay); each triangle is projected into that 2D
+// frame and the three edge functions U, V, W are evaluated from the projected vertices.
+// An edge shared by two triangles yields the same products in both, so the signs agree
+// exactly and no ray passes between them; an edge function that is exactly zero is
+// recomputed in double precision, as the paper prescribes.
 inline bool intersect_watertight(const Triangle& tri, const WatertightRay& r, float t_min,
                                  float t_max, float& t, float& u, float& v) {
   const vec4 a = tri.v0 - r.org, b = tri.v1 - r.org, c = tri.v2 - r.org;

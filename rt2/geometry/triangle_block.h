@@ -4,17 +4,10 @@
 // Each triangle keeps its vertices exactly as given (the watertight test needs the shared
 // bits of shared vertices) and its normal N = E2 x E1, as rt2::Triangle holds them, so the
 // block tests compute the same values as the one-triangle tests of triangle.h, bit for bit.
-// The fast test reads N rather than recomputing it (Embree's Triangle4 keeps it too): 48
-// more bytes per block, and six multiplies and three subtracts less on the path each ray
-// waits on. Measured with bench_trace on the four bench-peer meshes, old and new layout
-// alternated: the fast test's shadow rays 5-9 % and reflected rays 2-5 % faster, incoherent
-// rays within 1 %. The watertight test does not read N and pays for the larger blocks where
-// the mesh is large: incoherent rays 3 % slower on the elephant (89k triangles), 1 % faster
-// on the dragon and the bunny (with the in-place reads of triangle_block_intersect.h).
-// A lane without a triangle holds NaN (no ray hits it) and prim kNoPrim. A leaf of the BVH
-// is a run of consecutive blocks; the last one has kLastBlock set in prim[0].
-//
-// The tests themselves (triangle_block_intersect.h) are compiled per instruction set.
+// The fast test reads N rather than recomputing it (as Embree's Triangle4 does): more bytes
+// per block, fewer operations on the path each ray waits on. A lane without a triangle holds
+// NaN (no ray hits it) and prim kNoPrim. A leaf is a run of consecutive blocks, the last with
+// kLastBlock set in prim[0]. The tests (rt2/kernel/) are compiled per instruction set.
 #pragma once
 
 #include <cstdint>

@@ -36,7 +36,7 @@ class Film {
   // Adds one sample's colour (lanes x y z) to pixel (x, y).
   MLIB_INLINE void add(int x, int y, const vec4& color) {
     const std::size_t i = index(x, y);
-    // Compensated (Kahan) summation, as the renderer has always averaged its subpixels.
+    // Compensated (Kahan) summation.
     const vec4 y_ = color - carry_[i];
     const vec4 t = sum_[i] + y_;
     carry_[i] = (t - sum_[i]) - y_;

@@ -1,17 +1,13 @@
 // rt2/image/image_codec.h — encoding and decoding image files: the seam between rt2 and
 // OpenImageIO, which rt2 loads only when an image is read or written.
 //
-// Why a plugin: libOpenImageIO pulls in ~260 shared libraries (ffmpeg, gdal, log4cplus, …)
-// whose loading and static initialisers cost ~0.25 s and ~130 MB of address space before
-// main, even for `rt2cpr --help` or a render that writes no image (under `ulimit -v 400000`
-// the program could not start at all). So the one file that includes OIIO,
-// image_codec_oiio.cpp, is built as the shared library lib/librt2_image_codec.so beside
-// bin/, and image_codec() opens it with dlopen the first time a codec is needed.
-//
-// The codec works on bytes in memory (OIIO's IOProxy): it never touches the output file,
-// so a full disk cannot abort it inside a format library; rt2/image/output_file.h writes the
-// bytes. Functions return "" on success or a one-line reason; no exception crosses the
-// library boundary.
+// A plugin because libOpenImageIO pulls in hundreds of shared libraries (ffmpeg, gdal, …)
+// whose loading and static initialisers cost time and address space before main, even for
+// `rt2cpr --help`. The one file that includes OIIO, image_codec_oiio.cpp, is built as
+// lib/librt2_image_codec.so beside bin/, and image_codec() dlopens it on first need. The
+// codec works on bytes in memory (OIIO's IOProxy), never on the output file, so a full disk
+// cannot abort it inside a format library (rt2/image/output_file.h writes the bytes).
+// Functions return "" on success or a one-line reason; no exception crosses the library.
 #pragma once
 
 #include <string>

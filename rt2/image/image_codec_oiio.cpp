@@ -186,8 +186,9 @@ void texture_sample(void* s, void* handle, int nchannels, float u, float v, floa
   OIIO::TextureOpt opt;
   opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
   opt.fill = 0.0f;
-  // Bilinear within a level, as texture.h says: OIIO's default, smart bicubic, uses B-spline
-  // weights when magnifying, which blur even a texel's centre with its neighbours.
+  // Bilinear within a level, as rt2/shading/texture.h says: OIIO's default, smart bicubic,
+  // uses B-spline weights when magnifying, which blur even a texel's centre with its
+  // neighbours.
   opt.interpmode = OIIO::TextureOpt::InterpBilinear;
   float out[3] = {0.0f, 0.0f, 0.0f};
   // Grey images give one channel: it is replicated (fill would make G and B 0).

@@ -5,12 +5,7 @@
 // highlights); SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5,
 // K1 = 0.01, K2 = 0.03, dynamic range 1) is computed here on luminance, with both images
 // clamped to [0, 1] first, and averaged over the image. Identical images give RMSE 0,
-// PSNR +inf and SSIM 1.
-//
-// Edge error, for judging anti-aliasing: the RMSE over the reference's edge pixels only,
-// where a pixel is an edge pixel when the reference's luminance varies by more than 0.1
-// within its 3x3 neighbourhood. Flat regions, where every supersampling pattern agrees,
-// would otherwise dilute the difference between patterns.
+// PSNR +inf and SSIM 1. The edge error is defined at edge_rmse below.
 #pragma once
 
 #include <cstddef>
@@ -32,7 +27,10 @@ ImageError compare_images(const Image& image, const Image& reference);
 
 double ssim(const Image& a, const Image& b);
 
-// RMSE of `image` against `reference` over the reference's edge pixels (see above);
+// Edge error, for judging anti-aliasing: the RMSE of `image` against `reference` over the
+// reference's edge pixels only, where a pixel is an edge pixel when the reference's
+// luminance varies by more than 0.1 within its 3x3 neighbourhood (flat regions, where every
+// supersampling pattern agrees, would otherwise dilute the difference between patterns);
 // `pixels` receives their count.
 double edge_rmse(const Image& image, const Image& reference, std::size_t& pixels);
 

@@ -3,13 +3,11 @@
 // The format follows the file name's extension (.png, .exr, .ppm, .jpg, .tif, .hdr, and
 // whatever else the codec can write to memory). Float formats (.exr, .hdr, .tif) store the
 // renderer's linear RGB values as they are. Display formats (.png, .jpg, .ppm and every
-// other 8-bit format) store sRGB-encoded values (rt2/image/srgb.h), clamped to [0, 1] and
-// rounded to 8 bits, and are tagged sRGB; before the encoding, a Display (tonemap.h) maps
-// them through an exposure and a tone curve (the default, none, leaves them as they are). Reading undoes the encoding, so a reference image
-// is compared in linear values whatever its format.
-//
-// Images are encoded in memory (rt2/image/image_codec.h, OpenImageIO loaded on first use) and
-// written by rt2/image/output_file.h: the file appears complete or not at all.
+// other 8-bit format) store values mapped by a Display (tonemap.h; the default leaves them
+// as they are), sRGB-encoded (srgb.h), clamped to [0, 1], rounded to 8 bits and tagged sRGB.
+// Reading undoes the encoding, so a reference image is compared in linear values. Images
+// are encoded in memory (image_codec.h, OpenImageIO loaded on first use) and written by
+// output_file.h: the file appears complete or not at all.
 #pragma once
 
 #include <string>

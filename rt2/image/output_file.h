@@ -8,7 +8,13 @@
 // an I/O error). While the temporary file exists its path is registered for removal: if
 // the process is stopped by SIGINT, SIGTERM, SIGHUP or SIGQUIT, a handler unlinks it and
 // re-raises the signal; if a library calls exit(), an atexit handler does.
-//
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace rt2::io {
+
 // What a target may be:
 // - a new name, or an existing regular file: replaced atomically. An existing file with no
 //   write permission bit is refused ("is read-only"), for root as for anyone: its owner
@@ -19,13 +25,6 @@
 //   every write and the close checked (`/dev/full` fails with "No space left on device").
 // - an empty path, a directory, a missing folder, a folder without write permission, or
 //   another kind of file: refused by check_output_path, before any work is done.
-#pragma once
-
-#include <string>
-#include <string_view>
-
-namespace rt2::io {
-
 // Throws rt2::Error ("PATH: reason", one line) unless `path` can be written as above.
 void check_output_path(const std::string& path);
 

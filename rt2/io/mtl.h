@@ -3,7 +3,7 @@
 // Part of the implementation of rt2/io/scene_io.h, not an API. rt2 reads MTL text itself, not
 // through tinyobjloader, which reads `Kd 0.5` as dark red (0.5, 0, 0), turns `Kd red` or
 // `Ns nan` into numbers without a word, and keeps some 2 KB of texture fields per material
-// (2.3 GB for a file of a million materials). read_mtl checks every statement rt2 knows, an
+// (gigabytes for a file of a million materials). read_mtl checks every statement rt2 knows, an
 // error naming the MTL file and line, keeps only the materials the OBJ asks for, and warns
 // once per file about what rt2 ignores (textures); from_mtl maps a material to a Material as
 // scenes/FORMAT.md documents.
@@ -21,7 +21,7 @@
 namespace rt2::io {
 
 // One MTL material as written: colours as r g b (one number is grey), the rest as given. The
-// defaults are tinyobjloader's, so that files read as they did before rt2 read them itself.
+// defaults are tinyobjloader's, so that a file reads as it would through tinyobjloader.
 struct MtlMaterial {
   std::string file;                  // the MTL file, for messages
   float ka[3] = {0.0f, 0.0f, 0.0f};  // Ka

@@ -1,15 +1,13 @@
 // rt2/io/obj_mesh.cpp — OBJ text and its MTL libraries into a Mesh (internal; see
 // rt2/io/obj_mesh.h).
 //
-// tinyobjloader parses the OBJ, but it accepts bad input silently (an unparsable coordinate
+// tinyobjloader parses the OBJ but accepts bad input silently (an unparsable coordinate
 // becomes 0, an out-of-range index is a warning or a skipped face), so the OBJ text is
-// scanned first to find such problems with their line numbers; the scan also notes what
-// tinyobjloader does not keep or keeps wrongly: the material each face uses (`usemtl` takes
-// the rest of the line as the name) and the corner count of faces of 256 corners or more
-// (tinyobjloader stores it in a byte). MTL libraries are found and read here (relative to
-// the OBJ, rt2/io/mtl.h), only the materials the faces name kept. tinyobjloader leaves
-// polygons whole; rt2/io/polygon_triangulation.h splits them. Then the faces are assembled
-// into a Mesh with one scene material each.
+// scanned first to report such problems with their line numbers, and to note what
+// tinyobjloader drops or keeps wrongly: each face's material (`usemtl` takes the rest of the
+// line) and the corner count of faces of 256 corners or more (stored in a byte). MTL
+// libraries (relative to the OBJ, rt2/io/mtl.h) give the materials the faces name; polygons
+// are split by rt2/io/polygon_triangulation.h; the faces become a Mesh.
 #include "rt2/io/obj_mesh.h"
 
 #include <tiny_obj_loader.h>

@@ -1,17 +1,6 @@
 // rt2/io/polygon_triangulation.cpp — quads split along a diagonal, larger polygons ear-clipped
 // in their plane with a bounding volume hierarchy over the reflex corners (internal; see
-// rt2/io/polygon_triangulation.h).
-//
-// Ear clipping (Meisters 1975; testing only reflex corners as in Eberly, "Triangulation by
-// Ear Clipping"; corners in Morton order as in mapbox/earcut): the corners form a ring; a convex
-// corner b with neighbours a and c is an ear when no other corner that could block it (a reflex or
-// flat one: if any corner lies in triangle abc, a reflex one does) lies in the triangle; the ear is
-// cut off, and a and c, whose angles shrink, are looked at again. Corners repeated at the two ends
-// of a bridge edge sit exactly on a triangle's corner: such a corner blocks the ear only if
-// one of its edges enters the triangle. When a whole turn of the ring finds no ear, the
-// polygon is not simple (or rounding made it look so): first the corners of zero turn are cut
-// off (zero-area triangles; the region does not change), then an ear that only corners
-// strictly inside would block, and last the corners left are fanned.
+// rt2/io/polygon_triangulation.h). The algorithm is described at triangulate() below.
 #include "rt2/io/polygon_triangulation.h"
 
 #include <algorithm>
@@ -63,6 +52,16 @@ std::size_t PolygonTriangulator::budget(std::size_t corners) {
   return 32 * corners * log2 + 100000;
 }
 
+// Ear clipping (Meisters 1975; testing only reflex corners as in Eberly, "Triangulation by
+// Ear Clipping"; corners in Morton order as in mapbox/earcut): the corners form a ring; a convex
+// corner b with neighbours a and c is an ear when no other corner that could block it (a reflex or
+// flat one: if any corner lies in triangle abc, a reflex one does) lies in the triangle; the ear is
+// cut off, and a and c, whose angles shrink, are looked at again. Corners repeated at the two ends
+// of a bridge edge sit exactly on a triangle's corner: such a corner blocks the ear only if
+// one of its edges enters the triangle. When a whole turn of the ring finds no ear, the
+// polygon is not simple (or rounding made it look so): first the corners of zero turn are cut
+// off (zero-area triangles; the region does not change), then an ear that only corners
+// strictly inside would block, and last the corners left are fanned.
 bool PolygonTriangulator::triangulate(std::span<const vec4> corners,
                                       std::vector<CornerTriangle>& out) {
   work_ = 0;
@@ -368,8 +367,7 @@ bool PolygonTriangulator::ear_clip(std::span<const vec4> corners,
   // no ears it first tries those beside recent cuts (`pending_`, newest first), whose
   // angles shrank: where ears are few (a spiral, a comb, a thin ring zipped up from its
   // bridge) the next one is usually there, and walking the ring for each would cost a turn
-  // per ear. (Trying them at once costs more on polygons with many ears: 1.5 times the work
-  // on a circle.)
+  // per ear. (Trying them at once would cost more on polygons with many ears, a circle.)
   constexpr std::size_t kMisses = 16;
   std::uint32_t ear = 0, stop = 0;
   std::size_t misses = 0;

@@ -1,29 +1,13 @@
 // rt2/io/polygon_triangulation.h — an OBJ face of any number of corners into triangles
-// (internal).
+// (internal: part of rt2/io/scene_io.h's implementation, called by rt2/io/obj_mesh.cpp).
 //
-// Part of the implementation of rt2/io/scene_io.h, not an API: rt2/io/obj_mesh.cpp hands every
-// face of more than three corners to a PolygonTriangulator. Quads are split along a diagonal
-// (the shorter one, as tinyobjloader does, unless only the other one lies inside: a concave
-// quad). Larger polygons are ear-clipped in their own plane: the Newell normal picks the
-// axis plane they are projected onto, and a bounding volume hierarchy over the reflex corners
-// makes each ear test look only at the corners near the ear, so a polygon of 100,000 corners
-// takes about a tenth of a second. Concave polygons and polygons with holes joined by a
-// bridge edge (the edge walked twice, its two ends repeated, as LightWave and 3ds Max write
-// them) are triangulated exactly. Self-intersecting and degenerate polygons end, after a
-// bounded amount of work, in a fan over the corners left (and the caller can say so); they
-// never hang or crash.
-//
-// Why not CGAL (libcgal-dev: its constrained Delaunay triangulation is header-only): it pulls
-// Boost, GMP and MPFR into the build (libcgal-dev depends on them) and heavy templates into
-// every build mode, and its triangulation packages are GPL-3, which rt2 would inherit. It
-// also works on points, not on a polygon's corners: it merges the two copies of each bridge
-// end (each triangle corner would then have to be mapped back to one of the face's corners,
-// with its own normal), and the usual inside/outside marking by crossing constrained edges
-// breaks on a bridge, which has the inside on both sides, unless edges walked twice are
-// dropped first; a self-intersecting face becomes new vertices at the crossings. This ear
-// clipper is a few hundred tested lines that work on the corners as written, keep the
-// face's winding, create no vertex, meet the speed wanted (100,000 corners in about 0.1 s)
-// and fail in a way we choose.
+// Quads are split along a diagonal (the shorter one, as tinyobjloader does, unless only the
+// other one lies inside: a concave quad). Larger polygons are ear-clipped in their own plane:
+// the Newell normal picks the axis plane they are projected onto, and a bounding volume
+// hierarchy over the reflex corners makes each ear test look only at corners near the ear.
+// Concave polygons and polygons with holes joined by a bridge edge (walked twice, its ends
+// repeated, as LightWave and 3ds Max write them) are triangulated exactly; self-intersecting
+// and degenerate ones end, after bounded work, in a fan over the corners left; none hangs.
 #pragma once
 
 #include <array>
@@ -39,6 +23,17 @@ namespace rt2::io {
 
 using CornerTriangle = std::array<std::uint32_t, 3>;  // indices into the polygon's corners
 
+// Why not CGAL (libcgal-dev: its constrained Delaunay triangulation is header-only): it pulls
+// Boost, GMP and MPFR into the build (libcgal-dev depends on them) and heavy templates into
+// every build mode, and its triangulation packages are GPL-3, which rt2 would inherit. It
+// also works on points, not on a polygon's corners: it merges the two copies of each bridge
+// end (each triangle corner would then have to be mapped back to one of the face's corners,
+// with its own normal), and the usual inside/outside marking by crossing constrained edges
+// breaks on a bridge, which has the inside on both sides, unless edges walked twice are
+// dropped first; a self-intersecting face becomes new vertices at the crossings. This ear
+// clipper is a few hundred tested lines that work on the corners as written, keep the
+// face's winding, create no vertex, run in about n log n and fail in a way we choose.
+//
 // Triangulates polygons one after the other, reusing its buffers (no allocation per polygon
 // once they have grown).
 class PolygonTriangulator {

@@ -1,15 +1,13 @@
 // rt2/io/scene_io.h — loading scenes: TOML scene files (toml++), OBJ/MTL meshes
-// (tinyobjloader) and glTF 2.0 scenes (.gltf, .glb; tinygltf).
+// (tinyobjloader) and glTF 2.0 scenes (.gltf, .glb; tinygltf). The scene format and the
+// MTL → Material mapping are documented in scenes/FORMAT.md.
 //
-// The scene format and the MTL → Material mapping are documented in scenes/FORMAT.md. Every
-// problem in the input — a missing file, a syntax error, an unknown key, a value out of
-// range, a bad face index — is reported by throwing rt2::Error with a one-line message that
-// starts with the file and, where there is one, the line and column:
+// Every problem in the input — a missing file, a syntax error, an unknown key, a value out
+// of range, a bad face index — throws rt2::Error with a one-line message that starts with
+// the file and, where there is one, the line and column:
 //   scenes/x.toml:12:10: spheres[1].radius must be > 0 (got -1)
-//   scenes/room.obj:7: face references vertex 9, but only 8 vertices are defined
-// No other exception escapes these functions, and the loaded scene has passed
-// Scene::validate(). Non-fatal problems (a missing MTL library) are printed to stderr as one
-// `warning: ...` line each.
+// No other exception escapes, and the loaded scene has passed Scene::validate(). Non-fatal
+// problems (a missing MTL library) are printed to stderr as one `warning: ...` line each.
 #pragma once
 
 #include <string>

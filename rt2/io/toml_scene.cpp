@@ -434,7 +434,7 @@ void read_world(const Reader& root, Scene& scene) {
 
 // The index in scene.textures of the image file `key` names (relative to `folder`), added
 // once per file and colour space. The file must exist as a regular file; whether it decodes
-// is found when the scene is compiled (texture.h).
+// is found when the scene is compiled (rt2/shading/texture.h).
 std::uint32_t texture_ref(const Reader& r, Scene& scene, const fs::path& folder,
                           std::string_view key, bool srgb) {
   const std::string path = (folder / r.string(key)).string();
@@ -562,8 +562,8 @@ std::int64_t integer(const Reader& r, std::string_view key, std::int64_t lo, std
   return v->get();
 }
 
-// [light_field]: `count` lights scattered in the box [min, max] (light_field.h), added after
-// the [[lights]].
+// [light_field]: `count` lights scattered in the box [min, max] (rt2/scene/light_field.h),
+// added after the [[lights]].
 void read_light_field(const Reader& root, Scene& scene) {
   if (!root.find("light_field")) return;
   const Reader r = root.table("light_field",

@@ -1,23 +1,13 @@
 // rt2/lights/cluster_visibility.h — shadow rays that need not be traced: a light that every point
 // of a cluster of hits provably sees.
 //
-// The tiled-shadows text (../shared/reference/tiled-shadows.txt) stops at a shadow tile that
-// is fully lit: its pixels skip the per-pixel shadow test for that light. The ray-traced
-// equivalent is exact: a shadow ray from a point of box B to a light at L stays inside the
-// convex hull of B and L, so inside the box H = B ∪ {L}. When no triangle or sphere has a
-// bounding box that meets H (each padded by 2^-12 of its own coordinates: well beyond the
-// rounding of any ray test, which grows with the ray's and the primitive's), and no plane
-// separates B from L (all of B's corners and L strictly on one side, with a margin), every
-// such ray passes unattenuated: the transmittance its walk would return is exactly 1, and
-// the ray is not traced. Otherwise nothing is claimed and the rays are traced as usual.
-//
-// gather() collects, once per cluster, the triangles and spheres near it (the region its
-// lights' rays can reach); sees() then tests one light against those few. A primitive is
-// out of the way when its box misses the hull's cover — the boxes of the hull's slices
-// (1 - t) B + t L for t in [i/4, (i+1)/4], which hold every ray's points at those t — or,
-// for a triangle, when all of the hull's corners (B's 8 and L) lie strictly on one side of
-// its plane (the face a cluster of hits lies on, lit from the front, is out of the way).
-// A cluster with more than kMaxOccluders primitives nearby proves nothing.
+// The ray-traced, exact form of the fully lit shadow tile of the tiled-shadows text
+// (../shared/reference/tiled-shadows.txt): a shadow ray from a point of box B to a light at
+// L stays inside the box H = B ∪ {L}. When no triangle or sphere has a bounding box that
+// meets H (each padded by 2^-12 of its own coordinates, well beyond any ray test's
+// rounding), and no plane separates B from L (all of B's corners and L strictly on one
+// side, with a margin), the transmittance of every such ray is exactly 1 and it is not
+// traced. Otherwise nothing is claimed and the rays are traced as usual.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +18,13 @@
 
 namespace rt2 {
 
+// gather() collects, once per cluster, the triangles and spheres near it (the region its
+// lights' rays can reach); sees() then tests one light against those few. A primitive is
+// out of the way when its box misses the hull's cover — the boxes of the hull's slices
+// (1 - t) B + t L for t in [i/4, (i+1)/4], which hold every ray's points at those t — or,
+// for a triangle, when all of the hull's corners (B's 8 and L) lie strictly on one side of
+// its plane (the face a cluster of hits lies on, lit from the front, is out of the way).
+// A cluster with more than kMaxOccluders primitives nearby proves nothing.
 class ClusterVisibility {
  public:
   static constexpr std::size_t kMaxOccluders = 64;

@@ -64,7 +64,6 @@ LightBvh::BuildTimes LightBvh::move_and_build(std::vector<Light>& lights,
       &path_bounds, threads);
 }
 
-// position(i): light i's position (and, when the lights move, where it is moved).
 // position(i): light i's position (and, when the lights move, where it is moved). `known`:
 // a box that holds every bounded light, or null. With it, the first pass also writes the
 // Morton codes and the second is skipped when every light has a range.

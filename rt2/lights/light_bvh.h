@@ -1,23 +1,13 @@
 // rt2/lights/light_bvh.h — a hierarchy over the lights' spheres of influence, built from sorted
 // Morton codes every frame, that finds the lights able to reach a point or a box.
 //
-// The clustered-lighting text (../shared/reference/clustered-light-bvh.txt, its section
-// 3.3) builds its light BVH on the GPU each frame: the bounds of the lights, a Morton code
-// per light from its position in those bounds, a radix sort of the codes, then the tree
-// "from linear runs of the sorted sequence": leaves first, then their parents, level by
-// level. rt2 does the same on the CPU, in parallel (OpenMP): the lights in Morton order
-// are taken four at a time (the leaves), level 0 holds each group's box, and each entry of
-// level k + 1 is the box of four consecutive entries of level k, stored as a block of four
-// boxes in structure-of-arrays form so that one node is tested against a point or a box in
-// one SIMD pass; a walk that reaches a leaf tests its four spheres of influence (centre =
-// position, radius = range). The top level has at most four entries.
-//
-// Queries are conservative: every light whose sphere contains the point (meets the box) is
-// returned, and possibly a few more (the spheres are padded by 2^-16 of their radius, far
-// more than the rounding of any distance computed in float), so shading applies the exact
-// test (light.h's in_range) and skipping the others changes no pixel. Lights without a
-// range are in no tree: every query returns them. Results come in increasing light index
-// (scene order), which keeps a point's terms summed in the same order in every culling mode.
+// The clustered-lighting text (../shared/reference/clustered-light-bvh.txt, section 3.3)
+// builds its light BVH on the GPU each frame: the lights' bounds, a Morton code per light,
+// a radix sort, then the tree "from linear runs of the sorted sequence", level by level.
+// rt2 does the same on the CPU with OpenMP: the lights in Morton order are taken four at a
+// time (the leaves; a walk tests their spheres, centre = position, radius = range), level 0
+// holds each group's box, and each entry of level k + 1 boxes four of level k, stored as a
+// block of four boxes (structure of arrays, one SIMD test); the top has at most four.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +20,13 @@
 
 namespace rt2 {
 
+// Queries are conservative: every light whose sphere contains the point (meets the box) is
+// returned, and possibly a few more (the spheres are padded by 2^-16 of their radius, far
+// more than the rounding of any distance computed in float), so shading applies the exact
+// test (rt2/scene/light.h's in_range) and skipping the others changes no pixel. Lights
+// without a range are in no tree: every query returns them. Results come in increasing
+// light index (scene order), which keeps a point's terms summed in the same order in every
+// culling mode.
 class LightBvh {
  public:
   // Milliseconds per step of a frame's light update: one pass over the lights (moving

@@ -2,15 +2,12 @@
 // rebuilt every frame from sorted codes (Karras, "Maximizing Parallelism in the
 // Construction of BVHs, Octrees, and k-d Trees", HPG 2012; the same 10 bits per axis).
 //
-// Layout of a code: the box is cut into 1024 cells per axis and the cell indices x, y, z
-// (10 bits each) are interleaved from the top, x first:
-//
+// The box is cut into 1024 cells per axis and the cell indices x, y, z (10 bits each) are
+// interleaved from the top, x first (bit 3i + 2 is bit i of x; bits 30 and 31 are 0):
 //   bit  29 28 27  26 25 24  ...   2  1  0
 //        x9 y9 z9  x8 y8 z8  ...  x0 y0 z0
-//
-// so bit 3i + 2 is bit i of x, 3i + 1 of y and 3i of z, and bits 30 and 31 are 0. Sorting
-// the codes orders the points along a Z-order curve: points that share the top 3k bits lie
-// in the same cell of the k-times-halved box.
+// Sorting the codes orders the points along a Z-order curve: points that share the top 3k
+// bits lie in the same cell of the k-times-halved box.
 #pragma once
 
 #include <cstdint>

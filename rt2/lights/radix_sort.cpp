@@ -17,11 +17,8 @@ namespace rt2 {
 namespace {
 
 // 8-bit digits: 256 counters per thread fit in L1, and so do the 512 cache lines a pass
-// writes into at a time (one per digit for the keys and for the values). For 10^6 pairs
-// of 30-bit keys, 3 passes of 10 or 11 bits were not faster on the 2-core development
-// machine: medians of 5 rounds of 9 sorts at 2 threads were 8.8-9.5 ms for 4 x 8 bits,
-// 9.4-10.2 ms for 3 x 10 and 8.9-9.8 ms for 3 x 11 (at 1 thread all three spread over
-// 11-20 ms with the load).
+// writes into at a time (one per digit for the keys and for the values). Fewer, wider
+// digits (3 passes of 10 or 11 bits for 30-bit keys) are no faster.
 constexpr int kDigitBits = 8;
 constexpr std::size_t kRadix = std::size_t(1) << kDigitBits;
 constexpr std::size_t kParallelMin = 4096;  // smaller inputs sort on one thread
@@ -68,15 +65,13 @@ inline void prefetch_for_write(const std::uint32_t* p, std::size_t ahead) {
 
 // Moves [begin, end) of (sk, sv) to (dk, dv), the pair with digit d to offset[d]++.
 //
-// The prefetch a few pairs ahead of each store more than halves a pass (10^6 pairs, 8-bit
-// digits, on the development machine: 3.8-4.8 ms without, 1.9-2.0 ms with 2 or 4 pairs
-// ahead, 2.4-2.6 ms with 8). Our reading: a store that misses asks for its line only when
-// it leaves the store buffer, so with 512 scattered streams the buffer fills and the
-// misses are served nearly one at a time; the prefetch asks as soon as the address is
-// known, so many overlap. Further ahead, lines arrive early and compete for L1. (The
-// portable build has no write prefetch instruction; GCC emits prefetcht0.) Streaming
-// stores through per-digit line buffers were some 15% faster again in isolation, at the
-// price of intrinsics and partial-line bookkeeping.
+// Each store is preceded by a write prefetch a few pairs ahead: a store that misses asks
+// for its line only when it leaves the store buffer, so with 512 scattered streams the
+// buffer fills and the misses are served nearly one at a time; the prefetch asks as soon
+// as the address is known, so many overlap. Much further ahead, lines arrive early and
+// compete for L1. (The portable build has no write prefetch instruction; GCC emits
+// prefetcht0.) Streaming stores through per-digit line buffers are not used: they would
+// need intrinsics and partial-line bookkeeping.
 void scatter(const std::uint32_t* sk, const std::uint32_t* sv, std::uint32_t* dk,
              std::uint32_t* dv, std::size_t begin, std::size_t end, const Pass& pass,
              std::size_t* offset) {

@@ -3,8 +3,7 @@
 // Pixel (px, py) with 0 <= px < width, 0 <= py < height, continuous (a sample position
 // inside the pixel; the pixel centre is px + 0.5):
 //   x = 2 px / width - 1,  y = 1 - 2 py / height,
-//   x *= aspect * tan(fov / 2),  y *= tan(fov / 2),
-//   dir = normalize(Cd + Cr x + Cu y).
+//   x *= aspect * tan(fov / 2),  y *= tan(fov / 2),  dir = normalize(Cd + Cr x + Cu y).
 // `fov` is the FULL vertical angle of view (the thesis's `angle` is taken as the half
 // angle, tan(angle) above); aspect = width / height. The thesis's Cl ("left") is named
 // `right` here: image x grows to the right, so the vector it multiplies must point right

@@ -1,9 +1,9 @@
 // rt2/scene/features.h — what a scene uses: reflection, refraction, highlights and the kinds of
 // primitive, as bits, for reports and tests.
 //
-// (Until rt2 0.2 the render kernel was compiled once per combination of these bits, 96
-// kernels; measured, that gained about 1 % over deciding per material at run time, so the
-// kernel now decides at run time and is compiled per instruction set instead, rt2/base/isa.h.)
+// The render kernel is compiled per instruction set (rt2/base/isa.h) and decides per
+// material at run time, not per combination of these bits: a kernel per combination would
+// multiply the code for next to no gain.
 #pragma once
 
 #include <string>

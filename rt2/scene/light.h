@@ -2,15 +2,12 @@
 //
 // A light without a range (range = +inf, the default) shines on every point it sees with
 // its full radiance, as the thesis's lights do: Phong shading has no distance falloff. A
-// light with a finite range is a real-time engine's "local" light: its radiance is scaled by
-// a window that is 1 at the light, falls smoothly and reaches exactly 0 at `range`,
+// light with a finite range is scaled by a window that is 1 at the light and falls smoothly
+// to exactly 0 at `range` (zero derivative there: no visible edge; the window of Unreal
+// Engine 4's and Frostbite's falloff, without the inverse square, which rt2's lights lack):
 //   window(d) = (1 - (d / range)^4)^2  for d < range,  0 from range on
-// (the window of the windowed inverse-square falloff that Unreal Engine 4 and Frostbite
-// use, without the inverse square: rt2's lights have none, and a light whose range grows
-// without bound tends to the light without one). Its derivative is 0 at d = range, so the
-// lit region has no visible edge. Because the contribution is exactly 0 beyond the range,
-// a light whose sphere of influence does not contain a point can be skipped there without
-// changing a bit of the image (light_bvh.h, the many-lights culling).
+// Beyond its range a light can be skipped without changing a bit of the image
+// (rt2/lights/light_bvh.h, the many-lights culling).
 #pragma once
 
 #include <cmath>
@@ -29,7 +26,7 @@ struct Light {
 };
 
 // Whether a point at distance `distance` from `light` receives any of its light: the one
-// test every light-culling mode is a superset of (render: shade).
+// test every light-culling mode is a superset of (the render kernel's shading applies it).
 inline bool in_range(const Light& light, float distance) { return distance < light.range; }
 
 // The falloff window at distance d < light.range of a light with a finite range.

@@ -1,8 +1,9 @@
 // rt2/scene/mesh.h — an indexed triangle mesh as loaded or generated, before acceleration.
 //
 // Positions (w = 0), optional per-vertex normals (same count as positions, or empty for
-// flat shading) and texture coordinates (same count, or empty), faces as vertex-index triples, and a material index per face (an index
-// into Scene::materials). Accel turns meshes into precomputed Triangles in BVH order.
+// flat shading) and texture coordinates (same count, or empty), faces as vertex-index
+// triples, and a material index per face (an index into Scene::materials). Accel turns
+// meshes into precomputed Triangles in BVH order.
 #pragma once
 
 #include <array>

@@ -74,8 +74,8 @@ struct Scene {
   std::size_t triangle_count() const;
   // Bounds of the bounded geometry (spheres and meshes); empty if there is none.
   Aabb bounds() const;
-  // The scene's size for the ray-origin offset (offset.h): the largest extent of its
-  // bounded geometry, or 1 when it has none (planes only).
+  // The scene's size for the ray-origin offset (rt2/geometry/offset.h): the largest extent
+  // of its bounded geometry, or 1 when it has none (planes only).
   float size() const;
   // The feature bits this scene needs (see features.h), given how many lights are used.
   unsigned features(std::size_t light_count) const;
@@ -88,9 +88,10 @@ struct Scene {
 // Moves the whole scene by -camera position, so that the camera sits at the origin.
 // Rendering is invariant under translation, but float precision is not: a scene a
 // million units from the origin has an ulp of 0.0625 there, which swallows small objects
-// and the ray-origin offsets of secondary rays (offset.h). Near the camera, where the
-// pixels come from, camera-relative coordinates keep full precision; input coordinates
-// that are exact floats stay exact (the subtraction of two nearby floats is exact).
+// and the ray-origin offsets of secondary rays (rt2/geometry/offset.h). Near the camera,
+// where the pixels come from, camera-relative coordinates keep full precision; input
+// coordinates that are exact floats stay exact (the subtraction of two nearby floats is
+// exact).
 // Planes keep their normal and move their offset: D' = D + N·c.
 void recenter_on_camera(Scene& scene);
 

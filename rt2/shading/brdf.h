@@ -1,27 +1,12 @@
 // rt2/shading/brdf.h — the physically based BRDF of Shading::pbr: Cook-Torrance microfacet
 // specular (GGX normal distribution, height-correlated Smith visibility, Schlick Fresnel)
-// plus a Lambert diffuse, in glTF 2.0's metallic-roughness parametrisation.
-//
+// plus a Lambert diffuse, in glTF 2.0's metallic-roughness parametrisation:
 //   f(l, v) = kD diffuse / pi + D(h) V(l, v) F(h·v),
-//   kD = (1 - metallic) (1 - E(v)) (1 - E(l)) / (1 - E_avg),
-//
+//   kD = (1 - metallic) (1 - E(v)) (1 - E(l)) / (1 - E_avg)  (energy conserving, see brdf())
 // as in learnopengl's PBR chapters (Karis 2013, "Real Shading in Unreal Engine 4"), with
 // Filament's visibility term V = G2 / (4 (n·l)(n·v)) in place of G / (4 (n·l)(n·v)).
 // Roughness is perceptual; the GGX alpha is roughness^2 (Burley 2012). Every direction is
 // unit length and points away from the surface; colours are linear RGB with w = 0.
-//
-// The diffuse share. The text (reference/pbr-chapter.txt, after learnopengl) takes
-// kD = (1 - F(h·v)) (1 - metallic): the Fresnel of the one microfacet that mirrors l into
-// v stands for all the light the specular lobe reflects. That is not energy conserving: a
-// white dielectric seen at grazing angles reflects up to 1.84 times the light it receives
-// (roughness 0.05, 89 degrees; tests/rt2/shading/brdf_test.cpp measured it), because the lobe
-// then reflects most of the light and the diffuse still adds almost all of its own. rt2
-// replaces the one Fresnel factor by what the whole lobe reflects, its directional albedo
-// E (brdf_lut.h), on both sides so that f stays reciprocal (Kelemen and Szirmay-Kalos
-// 2001; Kulla and Conty 2017): the diffuse term then reflects exactly (1 - E(v)) of the
-// light a white one would, and the BRDF's albedo E(v) + (1 - E(v)) diffuse never exceeds
-// 1. Where the lobe reflects little (a dielectric seen head-on, E ~ 0.04) the two shares
-// agree within a few per cent.
 #pragma once
 
 #include <algorithm>
@@ -132,8 +117,20 @@ inline PbrSurface pbr_surface(const vec4& base_color, float metallic, float roug
   return s;
 }
 
+// The diffuse share. The text (reference/pbr-chapter.txt, after learnopengl) takes
+// kD = (1 - F(h·v)) (1 - metallic): the Fresnel of the one microfacet that mirrors l into
+// v stands for all the light the specular lobe reflects. That is not energy conserving: a
+// white dielectric seen at grazing angles reflects more light than it receives (1.84 times
+// at roughness 0.05 and 89 degrees), because the lobe then reflects most of the light and
+// the diffuse still adds almost all of its own. rt2 replaces the one Fresnel factor by
+// what the whole lobe reflects, its directional albedo E (brdf_lut.h), on both sides so
+// that f stays reciprocal (Kelemen and Szirmay-Kalos 2001; Kulla and Conty 2017): the
+// diffuse term then reflects exactly (1 - E(v)) of the light a white one would, and the
+// BRDF's albedo E(v) + (1 - E(v)) diffuse never exceeds 1. Where the lobe reflects little
+// (a dielectric seen head-on, E ~ 0.04) the two shares agree within a few per cent.
+//
 // f(l, v), the BRDF itself (not times n·l): kD diffuse / pi + D V F, F = F(h·v), kD as
-// above. n, v, l unit length; 0 when l or v is at or below the surface. `e_v` is
+// in the file's header. n, v, l unit length; 0 when l or v is at or below the surface. `e_v` is
 // specular_albedo(s, n·v), which a caller shading many lights computes once. Reciprocal
 // bit for bit when e_v is: h·v is taken as the mean of h·v and h·l (equal in exact
 // arithmetic), and the visibility and kD terms are symmetric.

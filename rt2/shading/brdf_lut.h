@@ -1,25 +1,22 @@
 // rt2/shading/brdf_lut.h — the directional albedo of brdf.h's specular lobe, tabulated: the
 // split-sum table of image-based lighting (Karis 2013) and the energy balance of the
-// diffuse term (brdf.h).
+// diffuse term (brdf.h). Computed once per process on the first lookup, so renders without
+// physically based materials never pay for it.
 //
 // For a view at n·v = mu and a roughness r, the specular lobe D V F of brdf.h reflects the
-// fraction
-//   E(mu) = integral of D V F(h·v) (n·l) dl = F0 A(mu, r) + B(mu, r)
-// of light arriving uniformly from the hemisphere (Schlick's F = F0 (1 - Fc) + Fc with
-// Fc = (1 - h·v)^5, so A integrates D V (1 - Fc) n·l and B integrates D V Fc n·l), and its
-// cosine-weighted average over views is E_avg = F0 A_avg(r) + B_avg(r),
-// A_avg = 2 integral of A(mu) mu dmu over [0, 1], likewise B_avg.
-//
-// The table: 64 x 64 entries over mu (at mu = ((i + 0.5) / 64)^2, densest at grazing views
-// where E changes fastest) and roughness (j / 63, 0 and 1 included), bilinear in sqrt(mu)
-// and roughness, each from 1024 GGX-distributed Hammersley samples with
-// alpha = max(r^2, kMinAlpha), the alpha the lights see; the averages from the table itself
-// (so that they are the averages of what lookups return). Computed once per process on the
-// first lookup (~80 ms on 2 threads), so renders without physically based materials never pay for it.
+// fraction E(mu) = integral of D V F(h·v) (n·l) dl = F0 A(mu, r) + B(mu, r) of light arriving
+// uniformly from the hemisphere (Schlick's F = F0 (1 - Fc) + Fc with Fc = (1 - h·v)^5, so A
+// integrates D V (1 - Fc) n·l and B integrates D V Fc n·l); its cosine-weighted average over
+// views is E_avg = F0 A_avg(r) + B_avg(r), A_avg = 2 integral of A(mu) mu dmu, likewise B_avg.
 #pragma once
 
 namespace rt2 {
 
+// The table: 64 x 64 entries over mu (at mu = ((i + 0.5) / 64)^2, densest at grazing views
+// where E changes fastest) and roughness (j / 63, 0 and 1 included), bilinear in sqrt(mu)
+// and roughness, each from 1024 GGX-distributed Hammersley samples with
+// alpha = max(r^2, kMinAlpha), the alpha the lights see; the averages from the table itself
+// (so that they are the averages of what lookups return).
 struct SplitSum {
   float a = 0.0f, b = 0.0f;  // E = F0 a + b
 };

@@ -6,28 +6,8 @@
 //   diffuse:  (1 - metallic)(1 - E(v)) base_color irradiance(n)
 //   specular: specular(r, roughness) E(v),  E(v) = F0 A + B from brdf_lut.h's split_sum
 // with r the mirror direction of v. The factories prefilter once per scene (in parallel
-// with OpenMP); the lookups are bilinear and cheap, made per shaded point.
-//
-// Maps are equirectangular with the convention of rt2/shading/equirect.h (y up, row 0 at +y).
-// rotation_degrees turns the environment about +y, right-handed (90 degrees turn +z into
-// +x): what the map holds at direction m is seen at direction R_y(rotation) m, which is
-// the same as looking the map up at u + rotation / 360.
-//
-// What the prefiltered maps hold (all linear RGB):
-// * irradiance: E(n) / pi = (1/pi) integral of L(w) max(0, n·w) dw, so that a Lambert
-//   surface of albedo c reflects c irradiance(n); a constant environment c gives c. Held
-//   as spherical harmonics (IrradianceSh below), projected from the source by quadrature.
-//   (A 64 x 32 map convolved by quadrature, the first version, cost a direction-to-uv
-//   conversion and a bilinear lookup per shaded point, ~30 ns, twice the harmonics.)
-// * specular: kSpecularLevels maps at roughness k / (kSpecularLevels - 1): level 0 is the
-//   source (at most 512 texels wide), level k halves the resolution of level k-1 (not
-//   below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
-//   Karis's n = v = r assumption, weighted by n·l, from 128 GGX-distributed Hammersley
-//   samples, each read from the source's mip level that matches its solid angle
-//   (Colbert and Krivanek 2007, "GPU-Based Importance Sampling": filtered importance
-//   sampling, so that few samples do not alias).
-// * the split-sum table A, B with integral of f_spec cos = F0 A + B for brdf.h's specular
-//   term: brdf_lut.h (one table per process, shared with brdf.h's diffuse term).
+// with OpenMP); the lookups are bilinear and cheap, made per shaded point. Maps are
+// equirectangular with the convention of rt2/shading/equirect.h (y up, row 0 at +y).
 #pragma once
 
 #include <algorithm>
@@ -59,6 +39,25 @@ struct IrradianceSh {
   std::array<vec4, 9> c{};  // bands 0, 1 (y, z, x), 2 (xy, yz, 3z^2 - 1, xz, x^2 - y^2)
 };
 
+// rotation_degrees turns the environment about +y, right-handed (90 degrees turn +z into
+// +x): what the map holds at direction m is seen at direction R_y(rotation) m, which is
+// the same as looking the map up at u + rotation / 360.
+//
+// What the prefiltered maps hold (all linear RGB):
+// * irradiance: E(n) / pi = (1/pi) integral of L(w) max(0, n·w) dw, so that a Lambert
+//   surface of albedo c reflects c irradiance(n); a constant environment c gives c. Held
+//   as spherical harmonics (IrradianceSh above), projected from the source by quadrature:
+//   cheaper per shaded point than a convolved map's direction-to-uv conversion and
+//   bilinear lookup.
+// * specular: kSpecularLevels maps at roughness k / (kSpecularLevels - 1): level 0 is the
+//   source (at most 512 texels wide), level k halves the resolution of level k-1 (not
+//   below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
+//   Karis's n = v = r assumption, weighted by n·l, from 128 GGX-distributed Hammersley
+//   samples, each read from the source's mip level that matches its solid angle
+//   (Colbert and Krivanek 2007, "GPU-Based Importance Sampling": filtered importance
+//   sampling, so that few samples do not alias).
+// * the split-sum table A, B with integral of f_spec cos = F0 A + B for brdf.h's specular
+//   term: brdf_lut.h (one table per process, shared with brdf.h's diffuse term).
 class Environment {
  public:
   static constexpr int kSpecularLevels = 6;  // roughness 0, 0.2, ..., 1

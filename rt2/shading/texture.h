@@ -1,5 +1,5 @@
 // rt2/shading/texture.h — the images materials sample: OpenImageIO's TextureSystem behind rt2's
-// image codec library (image_codec.h), which is loaded only when a scene has textures.
+// image codec library (rt2/image/image_codec.h), loaded only when a scene has textures.
 //
 // A TextureSet opens every TextureDesc of a scene once, when the scene is compiled, so that
 // a missing or unreadable image is one error line before rendering ("wood.png: ..."), not
@@ -7,10 +7,6 @@
 // first — OIIO's cache reads files — and removed with the set. Lookups are filtered by
 // OIIO over a footprint (trilinear on the mip levels OIIO makes on first use for files
 // without their own, anisotropic where the footprint is) and repeat outside [0, 1].
-//
-// Texture coordinates follow OBJ: (u, v) with image row 0 at v = 1. sRGB-encoded images
-// (colours) are decoded to linear after filtering, the usual real-time shortcut (exact for
-// a single texel; filtering encoded values darkens high-contrast edges slightly).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +20,9 @@ namespace rt2 {
 
 struct ImageCodec;
 
+// Texture coordinates follow OBJ: (u, v) with image row 0 at v = 1. sRGB-encoded images
+// (colours) are decoded to linear after filtering, the usual real-time shortcut (exact for
+// a single texel; filtering encoded values darkens high-contrast edges slightly).
 class TextureSet {
  public:
   TextureSet() = default;  // no textures

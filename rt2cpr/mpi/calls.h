@@ -3,15 +3,11 @@
 // record from every rank).
 //
 // Open MPI's blocking calls (MPI_Recv, MPI_Wait, a blocking collective) poll in a busy loop
-// until they complete. A process waiting for rank 0 would take a core from its own render
-// threads, or on a shared machine from the other ranks'. So rt2cpr_mpi makes only
-// non-blocking calls and waits by testing, sleeping between two tests: kPoll while its
-// render threads are busy, kPollIdle while they wait for work (their cores are idle then,
-// and the message waited for is what they need); rank 0, whose answers every worker waits
-// for, kPollServe while any worker is in the frame. A wake-up costs ~26 us of CPU on the
-// 2-core VM this was measured on (the sleep alone): 2.5 % of a core at kPoll, 5 % at
-// kPollServe, 13 % at kPollIdle. Shorter intervals (200 us serving, 50 us idle) made 2 and
-// 4 ranks sharing its 2 cores 5-15 % slower (scripts/bench-mpi's layouts, 3 rounds).
+// until they complete: a process waiting for rank 0 would take a core from its own render
+// threads, or from other ranks. So rt2cpr_mpi makes only non-blocking calls and waits by
+// testing, sleeping between two tests: kPoll while its render threads are busy, kPollIdle
+// while they wait for work (the message waited for is what they need), and on rank 0,
+// whose answers every worker waits for, kPollServe while any worker is in the frame.
 #pragma once
 
 #include <mpi.h>
@@ -26,6 +22,8 @@
 
 namespace rt2cpr::mpi {
 
+// Each interval trades the CPU a wake-up costs against how late a message is seen; shorter
+// ones slow ranks that share cores.
 inline constexpr std::chrono::microseconds kPoll{1000}, kPollServe{500}, kPollIdle{200};
 
 // Called while a wait finds its request pending (before each sleep); may throw to give up.

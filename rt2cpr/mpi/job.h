@@ -1,18 +1,8 @@
 // rt2cpr/mpi/job.h — the processes rt2cpr_mpi runs in: an MPI job. Every rank loads and
 // compiles the scene (replicated data, as OSPRay's replicated mode) and renders tiles with
 // its own threads; rank 0 hands the tiles out as they are asked for and renders too,
-// assembles the image, prints, and writes the output and the statistics once.
-//
-// The interface is LocalJob's (rt2cpr/local_job.h), for main.cpp. How each kind of failure
-// ends the job:
-// - a step every rank takes (the options, the scene, the film) and that fails on any rank:
-//   every rank stops after it (agreement.h), and rank 0 prints the first failure's line and
-//   ends the job with status 1 (2 for the options) by MPI_Abort, at once: mpirun lets a
-//   second or two pass before it reports a process that exits with a non-zero status;
-// - a failure while frames render: a worker sends its line to rank 0, which prints it and
-//   aborts the job (MPI_Abort, status 1); rank 0's own is printed the same way;
-// - a process that dies: mpirun ends the job, and rank 0 says so (stop_notice.h).
-// No output is written in any of these cases.
+// assembles the image, prints, and writes the output and the statistics once. The
+// interface is LocalJob's (rt2cpr/local_job.h), for rt2cpr/main.cpp.
 #pragma once
 
 #include <optional>
@@ -29,6 +19,14 @@
 
 namespace rt2cpr::mpi {
 
+// How each kind of failure ends the job (no output is written in any of these cases):
+// - a step every rank takes (the options, the scene, the film) and that fails on any rank:
+//   every rank stops after it (agreement.h), and rank 0 prints the first failure's line and
+//   ends the job with status 1 (2 for the options) by MPI_Abort, at once: mpirun lets a
+//   second or two pass before it reports a process that exits with a non-zero status;
+// - a failure while frames render: a worker sends its line to rank 0, which prints it and
+//   aborts the job (MPI_Abort, status 1); rank 0's own is printed the same way;
+// - a process that dies: mpirun ends the job, and rank 0 says so (stop_notice.h).
 class Job {
  public:
   Job(int& argc, char**& argv);

@@ -4,13 +4,10 @@
 // renders tiles itself between two messages (root_frame.h). A worker (worker_frame.h)
 // opens the frame with one kRequest holding its credits c, the tiles it wants in hand
 // (credits() below). Rank 0 answers each credit, and later each kResult, with one kTile (a
-// tile to render, while any is left) or kDone. So each of a worker's c chains (request ->
-// tile -> result -> tile ...) ends in exactly one kDone: the worker's frame is over when it
-// has received c of them, and rank 0's when every tile's pixels are in and every chain has
-// ended. A collective at each frame's end (frame_tally.h) keeps frames apart: no request of
-// the next frame reaches rank 0 before it has left this one. kError carries a worker's
-// failure as text; rank 0 prints it and aborts the job. kFailure is the agreement's
-// (agreement.h).
+// tile to render, while any is left) or kDone: each of a worker's c chains (request -> tile
+// -> result -> tile ...) ends in exactly one kDone, and the worker's frame is over after c
+// of them. A collective at each frame's end (frame_tally.h) keeps frames apart. kError
+// carries a worker's failure as text, which rank 0 prints before aborting the job.
 #pragma once
 
 #include <algorithm>

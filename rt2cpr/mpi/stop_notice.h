@@ -8,13 +8,6 @@
 // finish the frame; on SIGTERM it says in one line why it stops, and nothing is written
 // (outputs appear whole or not at all). mpirun names the rank that died in its own report,
 // which `mpirun -q` leaves out.
-//
-// The other ranks let rank 0 go first: mpirun's second between SIGTERM and SIGKILL is a
-// sleep that ends early when one of its processes exits, and a worker dying at once on
-// SIGTERM cut it to a fraction of a millisecond, too short for rank 0's line (about one
-// kill in five on a busy machine). So a worker ignores a SIGTERM from its parent (mpirun,
-// or on another machine Open MPI's daemon) and ends with the SIGKILL that follows rank 0's
-// exit; a SIGTERM from anyone else ends it as usual.
 #pragma once
 
 namespace rt2cpr::mpi {
@@ -23,6 +16,12 @@ class StopNotice {
  public:
   // Installs rank 0's handler (`root`) or a worker's, unless SIGTERM is not at its default
   // (ignored or handled by someone else).
+  //
+  // The other ranks let rank 0 go first: mpirun's second between SIGTERM and SIGKILL is a
+  // sleep that ends early when one of its processes exits, so a worker dying at once on
+  // SIGTERM can cut it too short for rank 0's line. So a worker ignores a SIGTERM from its
+  // parent (mpirun, or on another machine Open MPI's daemon) and ends with the SIGKILL that
+  // follows rank 0's exit; a SIGTERM from anyone else ends it as usual.
   explicit StopNotice(bool root);
   ~StopNotice() { release(); }
   StopNotice(const StopNotice&) = delete;

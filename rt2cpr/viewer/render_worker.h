@@ -2,14 +2,12 @@
 // that turns the newest view the window asks for into images, so that the window never
 // waits for a frame.
 //
-// A view that moves gets one quick frame per request: one sample per pixel, at the
-// resolution divided by `scale`. A view that holds still gets the converged image, pass by
-// pass, each pass adding one sample per pixel to a film (film.h), every pass shown as it
-// finishes; a new request drops the pass under way. The still is rendered exactly as a file
-// render of the same options and camera would be: the scene moved to the camera and compiled
-// there (scene_setup.h compile_at_camera; a BVH build, ~4 ms for the built-in scene), the
-// samples of every pixel added in the same order, so that the converged image is the same
-// bits as `rt2cpr --camera ... --output` gives. Moving frames use the scene compiled last.
+// A moving view gets one quick frame per request: one sample per pixel, at the resolution
+// divided by `scale`, from the scene compiled last. A still view gets the converged image
+// pass by pass, each adding one sample per pixel to a film (rt2/image/film.h) and shown as
+// it finishes; a new request drops the pass under way. The still is the same bits as
+// `rt2cpr --camera ... --output` gives: the scene moved to the camera and compiled there
+// (rt2cpr/scene_setup.h compile_at_camera), every pixel's samples added in the same order.
 #pragma once
 
 #include <condition_variable>
@@ -37,7 +35,7 @@ struct ViewRequest {
   rt2::Camera camera;            // in the scene's own coordinates (as loaded)
   rt2::RenderSettings settings;  // the converged image's: size, samples, depth ...
   rt2::Schedule schedule;
-  int lights = -1;               // total lights (scene_setup.h set_lights); -1: the scene's
+  int lights = -1;               // total lights (rt2cpr/scene_setup.h set_lights); -1: the scene's
   bool moving = false;           // one quick frame instead of the converged image
   int scale = 1;                 // moving frames: width and height divided by this, >= 1
   // Changed by the window whenever anything above changes; a request with the generation
@@ -48,7 +46,7 @@ struct ViewRequest {
 // A finished image.
 struct Shown {
   rt2::Image image;                 // linear, as a file render's
-  std::vector<std::uint8_t> pixels;  // for the screen (display_pixels.h)
+  std::vector<std::uint8_t> pixels;  // for the screen (rt2/image/display_pixels.h)
   bool moving = false;
   int pass = 0, passes = 1;         // the still: passes done, of passes
   double ms = 0.0;                  // rendering it (the last pass for a still)
@@ -61,7 +59,7 @@ struct Shown {
 class RenderWorker {
  public:
   // `scene`: the scene in its own coordinates with the options' camera and environment
-  // (scene_setup.h load_scene); its lights are set per request. `options`: the BVH, the
+  // (rt2cpr/scene_setup.h load_scene); its lights are set per request. `options`: the BVH, the
   // instruction set, the light range and the display mapping. Compiles the scene with
   // options.lights at its camera before the thread starts, so that a scene that cannot be
   // rendered throws rt2::Error here. `shown` is called from the worker's thread after every

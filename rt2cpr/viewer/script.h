@@ -1,6 +1,16 @@
 // rt2cpr/viewer/script.h — `--script FILE`: input for the viewer, read from a file, one
-// command per line, played through the same event path as a user's keys and mouse.
-//
+// command per line (the commands at ScriptCommand below), played through the same event
+// path as a user's keys and mouse. Blank lines and lines starting with # are skipped.
+// Numbers are checked here, names of keys and settings by the viewer before its window
+// opens.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rt2cpr::viewer {
+
+// The commands:
 //   wait SECONDS          let time pass (the view keeps rendering)
 //   key NAME [SECONDS]    press the key NAME (SDL's names, a blank written _: W, Left,
 //                         F12, Left_Shift ...), hold it SECONDS (default: a tap), release it
@@ -16,16 +26,6 @@
 //                         overlay (on | off)
 //   resize W H            resize the window
 //   quit                  close the window (the script's end does not)
-//
-// Blank lines and lines starting with # are skipped. Numbers are checked here, names of
-// keys and settings by the viewer before its window opens.
-#pragma once
-
-#include <string>
-#include <vector>
-
-namespace rt2cpr::viewer {
-
 struct ScriptCommand {
   enum class Op { wait, key, mouse, scroll, screenshot, window_shot, wait_still, set, resize, quit };
   Op op = Op::wait;

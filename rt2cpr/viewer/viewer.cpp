@@ -56,8 +56,8 @@ std::string next_screenshot_name() {
 
 class Viewer {
  public:
-  // `scene`: the options' scene (scene_setup.h load_scene). Compiles it before the window
-  // opens, so that a scene that cannot be rendered is one error line and no window.
+  // `scene`: the options' scene (rt2cpr/scene_setup.h load_scene). Compiles it before the
+  // window opens, so that a scene that cannot be rendered is one error line and no window.
   Viewer(const Options& o, rt2::Scene scene, std::optional<ScriptPlayer> script,
          SDL_Keycode screenshot_key)
       : o_(o),

@@ -1,14 +1,11 @@
-// bench_lights: the light tree (rt2/lights/light_bvh.h) rebuilt every frame for N moving lights, as
-// --animate-lights does: the time of each step (one pass moving the lights along their paths
-// and taking their bounds, the Morton codes, the radix sort, the tree) at each thread count,
-// median / min /
-// max over repetitions; then the queries: point queries (a shading point's lights) and box
-// queries (a cluster's list) through the tree, and box queries by brute force.
-//
-// The lights are a hall's light field (scenes/hall.toml): uniform in 30 x 9.3 x 12 units,
-// each with a range uniform in --range LO,HI (default 0.3, the clustered-lighting text's
-// small lights). Query points are uniform in the same box; query boxes are 0.5 units wide.
-// One `key=value` line per measurement.
+// tests/bench/bench_lights.cpp — the light tree (rt2/lights/light_bvh.h) rebuilt every frame
+// for N moving lights, as --animate-lights does: the time of each step (moving the lights
+// and taking their bounds, the Morton codes, the radix sort, the tree) per thread count,
+// median / min / max over repetitions; then point queries (a shading point's lights) and
+// box queries (a cluster's list) through the tree, and box queries by brute force. The
+// lights are a hall's light field (scenes/hall.toml): uniform in 30 x 9.3 x 12 units, ranges
+// uniform in --range LO,HI (default 0.3); query boxes are 0.5 units wide. Prints one
+// `key=value` line per measurement.
 //
 //   build/release/bin/bench_lights [--lights 1000000] [--range 0.3] [--reps 9] [--threads 1,2]
 #include <omp.h>

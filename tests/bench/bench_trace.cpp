@@ -1,103 +1,13 @@
-// bench_trace — rays per second of rt2's batch queries (rt2/render/trace.h) on one OBJ mesh, and,
-// when built with Debian's libembree-dev (RT2_HAVE_EMBREE), of Embree 3 on the same
-// triangles and the same ray arrays, interleaved run by run.
+// tests/bench/bench_trace.cpp — rays per second of rt2's batch queries (rt2/render/trace.h)
+// on one OBJ mesh and, when built with Debian's libembree-dev (RT2_HAVE_EMBREE), of Embree 3
+// on the same triangles and the same ray arrays, interleaved run by run.
 //
-//   bench_trace --obj data/meshes/bunny00.obj                 # everything (a few minutes)
+//   bench_trace --obj data/meshes/bunny00.obj                 # everything
 //   bench_trace --obj m.obj --sets primary,shadow --reps 3 --test fast --threads 1
 //
-// THE SCENE. The OBJ is loaded by rt2's own loader (rt2::frame_obj, scene_io.h), which also
-// frames it; the ground plane frame_obj adds is removed, so both engines hold the mesh's
-// triangles only (degenerate faces are dropped by the loader, for both). Below, c is the
-// centre of the mesh's bounding box, R half its diagonal, S its largest extent
-// (Scene::size(), the renderer's offset scale).
-//   rt2:    Accel::build with the default BvhConfig (binned SAH, 16 bins, leaves <= 4).
-//   Embree: one RTC_GEOMETRY_TYPE_TRIANGLE geometry sharing the mesh's vertex and index
-//           arrays (the same floats rt2's triangles are made of), RTC_BUILD_QUALITY_MEDIUM;
-//           scene flags none for test=fast, RTC_SCENE_FLAG_ROBUST for test=watertight
-//           (Embree's mode against cracks between neighbouring triangles).
-//
-// THE RAY SETS (every engine traces the same arrays, in the same order):
-//   primary     one ray per pixel centre of a W x H image (default 1024 x 768; W and H
-//               multiples of 4) from frame_obj's camera: at c + (0, 0.3 R, 2.2 R) looking
-//               at c, up +y, 45 degree vertical field of view. Stored in 4 x 4 pixel tiles,
-//               tiles in row-major order, pixels row-major inside a tile; t_max = +inf.
-//   incoherent  2^20 rays (--rays); origin uniform in the mesh bounds, direction uniform on
-//               the sphere, from std::mt19937 seeded 20240601 and this mapping (no std
-//               distribution, so the rays are the same with any standard library):
-//                 U() = (rng() >> 8) * 2^-24, uniform in [0, 1), drawn in this order:
-//                 org = lo + (U(), U(), U()) * (hi - lo)   (x, y, z in turn)
-//                 z = 1 - 2 U(), phi = 2 pi U(), r = sqrt(max(0, 1 - z^2)),
-//                 dir = normalize((r cos phi, r sin phi, z) computed in double, rounded
-//                 to float);
-//               t_max = +inf.
-//   shadow      one ray per primary ray that hits the mesh (rt2's watertight closest hit),
-//               in the primary order, towards the point light L = c + (R, 3 R, 2 R) (above,
-//               right and in front: frame_obj's light). Origin o = rt2::offset_ray_origin(p,
-//               n, S) as rt2's renderer does, where p is the hit point computed from the
-//               hit's barycentrics on the hit triangle and n the triangle's unit geometric
-//               normal turned towards the primary ray's origin; dir = (L - o) / |L - o|,
-//               t_max = |L - o|. Any hit.
-//               Faces turned away from the light are included (they occlude themselves).
-//   reflection  one ray per primary hit, same origin o; dir = d - 2 n (n . d), the mirror
-//               direction of the primary direction d about n (rt2's reflect); closest hit,
-//               t_max = +inf.
-//
-// MEASUREMENT. Each engine traces the whole set once untimed (its answers are the ones
-// compared below), then --reps timed runs, interleaved: rep 1 rt2, rep 1 rt2_packets,
-// rep 1 embree, rep 1 embree16, rep 2 rt2, ... so drift hits all alike. A run is split into chunks of --chunk
-// rays (4096; 256 tiles for packets) traced by oneTBB parallel_for in a task_arena of the
-// given thread count (--threads, default 1 and all); FTZ and DAZ are set in every chunk
-// (mlib/fpmode.h), as Embree sets them in its own threads. Mrays/s = rays / wall time.
-//   engine=rt2       trace_closest / trace_occluded over each chunk;
-//   engine=rt2_packets  trace_closest_packets / trace_occluded_packets, one packet per
-//                    4 x 4 tile (primary and shadow only): the packet walk of
-//                    rt2/kernel/packet_traverse.h. Its answers must equal engine=rt2's bit
-//                    for bit (t, u, v, triangle): `differences` counts the rays where
-//                    they do not; `rays_in_packets` the rays per set ray walked in a
-//                    packet (the rest fell back to single rays);
-//   engine=embree    rtcIntersect1 / rtcOccluded1 per ray, tnear = 0, tfar = t_max;
-//   engine=embree16  rtcIntersect16 / rtcOccluded16 per 4 x 4 tile (primary and shadow
-//                    only; a lane is invalid where the primary ray missed).
-// Embree picks the widest instruction set of the CPU (rt2 is built for scons arch=...);
-// --embree-config isa=sse4.2 (or avx2, ...) holds it to a narrower one.
-// Build time: one thread, the median of --build-reps builds (5; interleaved like the
-// runs): rt2's Accel::build, Embree's rtcCommitScene on a device created with "threads=1".
-// Each engine's previous structure is released before its clock starts (rt2's used to be
-// freed inside its timed assignment, and could not lend its pages to the next build), and
-// each round of builds starts with the next engine (see build_and_report).
-// Bytes per triangle: rt2's accel_bytes; Embree's net bytes allocated during rtcCommitScene
-// (its memory monitor: BVH and leaf triangles; the shared vertex and index arrays are the
-// application's).
-// Tree cost: rt2's sah_nodes and sah_leaves (Accel::tree_sah) are the statistics Embree
-// prints for its own tree with --embree-config verbose=3 ("getAABBNodes : sah = ..." and
-// "leaves : sah = ..."): the inner nodes and the leaf blocks a random line through the
-// scene's box is expected to meet. Equal values mean equally good trees by the SAH.
-//
-// OUTPUT. Everything on stdout is `key=value` lines (progress goes to stderr):
-//   cpu="..." hw_threads=N
-//   rt2_mode=release rt2_arch=sse41 rt2_isa=avx512 rt2_width=8 chunk=4096  (rt2_isa: the ray
-//       kernels' instruction set, the widest the CPU runs unless --isa forces one)
-//   embree=3.13.5 embree_native_ray16=1 embree_tasking=tbb  (or embree=none / embree=off)
-//   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
-//       bytes=... bytes_per_tri=... sah_nodes=... sah_leaves=...
-//       (and engine=embree test=T lines, then ratio lines)
-//   mesh=M set=S engine=E test=T threads=K rays=... mrays_median=... mrays_min=...
-//       mrays_max=... hits=... [nodes_per_ray=... triangles_per_ray=...; rt2_packets adds
-//       rays_in_packets=... differences=...] [Embree lines add, against rt2: disagree=...
-//       disagree_edge=... disagree_end=... tdiff=... tdiff_edge=...]
-//   mesh=M set=S test=T threads=K ratio=... [ratio16=...]
-// ratio = rt2's median Mrays/s / Embree's (rtcIntersect1); ratio16 = rt2_packets' against
-// Embree's 16-ray packets (rtcIntersect16), ratio_single_to_16 = rt2's single rays against
-// them; for set=build, Embree's median build time / rt2's. Above 1: rt2 faster.
-// disagree: rays where exactly one engine hits (closest) or reports occlusion (shadow);
-// disagree_edge: those whose ray passes within a relative 1e-4 of an edge of the face under
-// the hit (the distance between the ray's line and the nearest edge, over the face's
-// longest edge, in double) or grazes the face (|cos| between ray and normal < 1e-4);
-// disagree_end: the others whose hit is at t < 1e-4 S or t > (1 - 1e-4) t_max; the rest
-// have no such excuse. tdiff: rays both engines hit at distances more than 1e-4 t + 1e-6 S
-// apart (one went past the surface the other stopped at); tdiff_edge: those whose nearer
-// hit is at an edge or grazing, as above. --show N prints up to N such rays per comparison
-// to stderr.
+// Prints `key=value` lines on stdout: each engine's build (time, bytes, SAH cost), then per
+// ray set, engine, test and thread count the Mrays/s and how the engines' answers differ.
+// The scene, the ray sets, the measurement and the output are defined below, each at its code.
 #include <CLI/CLI.hpp>
 #include <tbb/task_arena.h>
 
@@ -140,6 +50,17 @@
 
 namespace {
 
+// THE SCENE. The OBJ is loaded by rt2's own loader (rt2::frame_obj, rt2/io/scene_io.h),
+// which also frames it; the ground plane frame_obj adds is removed, so both engines hold
+// the mesh's triangles only (degenerate faces are dropped by the loader, for both). Below,
+// c is the centre of the mesh's bounding box, R half its diagonal, S its largest extent
+// (Scene::size(), the renderer's offset scale).
+//   rt2:    Accel::build with the default BvhConfig (binned SAH, 16 bins, leaves <= 4).
+//   Embree: one RTC_GEOMETRY_TYPE_TRIANGLE geometry sharing the mesh's vertex and index
+//           arrays (the same floats rt2's triangles are made of), RTC_BUILD_QUALITY_MEDIUM;
+//           scene flags none for test=fast, RTC_SCENE_FLAG_ROBUST for test=watertight
+//           (Embree's mode against cracks between neighbouring triangles).
+
 using bench::D3;
 using bench::RaySet;
 using bench::Runner;
@@ -153,6 +74,32 @@ constexpr double kRelTol = 1e-4;  // "within a relative 1e-4" of the disagreemen
 constexpr double kAbsTol = 1e-6;  // times S: distances closer than this are the same
 
 // --- ray sets -------------------------------------------------------------------------
+
+// THE RAY SETS (every engine traces the same arrays, in the same order):
+//   primary     one ray per pixel centre of a W x H image (default 1024 x 768; W and H
+//               multiples of 4) from frame_obj's camera: at c + (0, 0.3 R, 2.2 R) looking
+//               at c, up +y, 45 degree vertical field of view. Stored in 4 x 4 pixel tiles,
+//               tiles in row-major order, pixels row-major inside a tile; t_max = +inf.
+//   incoherent  2^20 rays (--rays); origin uniform in the mesh bounds, direction uniform on
+//               the sphere, from std::mt19937 seeded 20240601 and this mapping (no std
+//               distribution, so the rays are the same with any standard library):
+//                 U() = (rng() >> 8) * 2^-24, uniform in [0, 1), drawn in this order:
+//                 org = lo + (U(), U(), U()) * (hi - lo)   (x, y, z in turn)
+//                 z = 1 - 2 U(), phi = 2 pi U(), r = sqrt(max(0, 1 - z^2)),
+//                 dir = normalize((r cos phi, r sin phi, z) computed in double, rounded
+//                 to float);
+//               t_max = +inf.
+//   shadow      one ray per primary ray that hits the mesh (rt2's watertight closest hit),
+//               in the primary order, towards the point light L = c + (R, 3 R, 2 R) (above,
+//               right and in front: frame_obj's light). Origin o = rt2::offset_ray_origin(p,
+//               n, S) as rt2's renderer does, where p is the hit point computed from the
+//               hit's barycentrics on the hit triangle and n the triangle's unit geometric
+//               normal turned towards the primary ray's origin; dir = (L - o) / |L - o|,
+//               t_max = |L - o|. Any hit.
+//               Faces turned away from the light are included (they occlude themselves).
+//   reflection  one ray per primary hit, same origin o; dir = d - 2 n (n . d), the mirror
+//               direction of the primary direction d about n (rt2's reflect); closest hit,
+//               t_max = +inf.
 
 RaySet primary_set(const rt2::Camera& cam, int w, int h) {
   RaySet s;
@@ -207,8 +154,8 @@ SurfaceHits surface_hits(const RaySet& primary, const std::vector<Hit>& hits,
   for (std::uint32_t i = 0; i < primary.size(); ++i) {
     if (!hits[i].found()) continue;
     const Ray& r = primary.rays[i];
-    // As rt2's renderer does (tracer.h): the point from the barycentrics, the face normal
-    // turned towards the ray's origin.
+    // As rt2's renderer does (the render kernel, rt2/kernel/): the point from the
+    // barycentrics, the face normal turned towards the ray's origin.
     const rt2::Triangle& tri = acc.tris[rt2::prim_index(hits[i].prim)];
     vec4 n = normalize(tri.n);
     if (float(dot(n, r.dir)) > 0.0f) n = -n;
@@ -360,6 +307,32 @@ Agreement compare(const RaySet& set, const Runner& a, const Runner& b, float sca
 
 // --- reporting --------------------------------------------------------------------------
 
+// OUTPUT. Everything on stdout is `key=value` lines (progress goes to stderr):
+//   cpu="..." hw_threads=N
+//   rt2_mode=release rt2_arch=sse41 rt2_isa=avx512 rt2_width=8 chunk=4096  (rt2_isa: the ray
+//       kernels' instruction set, the widest the CPU runs unless --isa forces one)
+//   embree=3.13.5 embree_native_ray16=1 embree_tasking=tbb  (or embree=none / embree=off)
+//   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
+//       bytes=... bytes_per_tri=... sah_nodes=... sah_leaves=...
+//       (and engine=embree test=T lines, then ratio lines)
+//   mesh=M set=S engine=E test=T threads=K rays=... mrays_median=... mrays_min=...
+//       mrays_max=... hits=... [nodes_per_ray=... triangles_per_ray=...; rt2_packets adds
+//       rays_in_packets=... differences=...] [Embree lines add, against rt2: disagree=...
+//       disagree_edge=... disagree_end=... tdiff=... tdiff_edge=...]
+//   mesh=M set=S test=T threads=K ratio=... [ratio16=...]
+// ratio = rt2's median Mrays/s / Embree's (rtcIntersect1); ratio16 = rt2_packets' against
+// Embree's 16-ray packets (rtcIntersect16), ratio_single_to_16 = rt2's single rays against
+// them; for set=build, Embree's median build time / rt2's. Above 1: rt2 faster.
+// disagree: rays where exactly one engine hits (closest) or reports occlusion (shadow);
+// disagree_edge: those whose ray passes within a relative 1e-4 of an edge of the face under
+// the hit (the distance between the ray's line and the nearest edge, over the face's
+// longest edge, in double) or grazes the face (|cos| between ray and normal < 1e-4);
+// disagree_end: the others whose hit is at t < 1e-4 S or t > (1 - 1e-4) t_max; the rest
+// have no such excuse. tdiff: rays both engines hit at distances more than 1e-4 t + 1e-6 S
+// apart (one went past the surface the other stopped at); tdiff_edge: those whose nearer
+// hit is at an edge or grazing, as above. --show N prints up to N such rays per comparison
+// to stderr.
+
 
 struct Stats {
   double median = 0, min = 0, max = 0;
@@ -391,6 +364,38 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 const char* test_name(bool watertight) { return watertight ? "watertight" : "fast"; }
 
 // --- the run ----------------------------------------------------------------------------
+
+// MEASUREMENT. Each engine traces the whole set once untimed (its answers are the ones
+// compared below), then --reps timed runs, interleaved: rep 1 rt2, rep 1 rt2_packets,
+// rep 1 embree, rep 1 embree16, rep 2 rt2, ... so drift hits all alike. A run is split into
+// chunks of --chunk rays (4096; 256 tiles for packets) traced by oneTBB parallel_for in a
+// task_arena of the given thread count (--threads, default 1 and all); FTZ and DAZ are set
+// in every chunk (mlib/fpmode.h), as Embree sets them in its own threads. Mrays/s = rays /
+// wall time.
+//   engine=rt2       trace_closest / trace_occluded over each chunk;
+//   engine=rt2_packets  trace_closest_packets / trace_occluded_packets, one packet per
+//                    4 x 4 tile (primary and shadow only): the packet walk of
+//                    rt2/kernel/packet_traverse.h. Its answers must equal engine=rt2's bit
+//                    for bit (t, u, v, triangle): `differences` counts the rays where
+//                    they do not; `rays_in_packets` the rays per set ray walked in a
+//                    packet (the rest fell back to single rays);
+//   engine=embree    rtcIntersect1 / rtcOccluded1 per ray, tnear = 0, tfar = t_max;
+//   engine=embree16  rtcIntersect16 / rtcOccluded16 per 4 x 4 tile (primary and shadow
+//                    only; a lane is invalid where the primary ray missed).
+// Embree picks the widest instruction set of the CPU (rt2 is built for scons arch=...);
+// --embree-config isa=sse4.2 (or avx2, ...) holds it to a narrower one.
+// Build time: one thread, the median of --build-reps builds (5; interleaved like the
+// runs): rt2's Accel::build, Embree's rtcCommitScene on a device created with "threads=1".
+// Each engine's previous structure is released before its clock starts (so that freeing it
+// is not timed and its pages can serve the next build), and each round of builds starts
+// with the next engine (see build_and_report).
+// Bytes per triangle: rt2's accel_bytes; Embree's net bytes allocated during rtcCommitScene
+// (its memory monitor: BVH and leaf triangles; the shared vertex and index arrays are the
+// application's).
+// Tree cost: rt2's sah_nodes and sah_leaves (Accel::tree_sah) are the statistics Embree
+// prints for its own tree with --embree-config verbose=3 ("getAABBNodes : sah = ..." and
+// "leaves : sah = ..."): the inner nodes and the leaf blocks a random line through the
+// scene's box is expected to meet. Equal values mean equally good trees by the SAH.
 
 struct Options {
   std::string obj;
@@ -465,10 +470,10 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
       o.embree ? bench::embree_device(o.device_config("threads=1").c_str()) : nullptr;
 #endif
   // One round: rt2's build, then Embree's for each test. Each round starts one build further
-  // along the list (rt2 first, then Embree's first test, ...): on these virtual machines a
-  // build that gets memory freed more than a moment ago pays several times more for each
-  // fresh page than one that reuses what the build before it freed, so the first build of a
-  // round is the slow one, and no engine should always be it.
+  // along the list (rt2 first, then Embree's first test, ...): a build that gets memory freed
+  // longer ago can pay more for each fresh page than one that reuses what the build before
+  // it freed, so the first build of a round may be the slow one, and no engine should
+  // always be it.
   std::vector<std::function<void()>> builds;
   builds.push_back([&] {
     acc = rt2::Accel{};

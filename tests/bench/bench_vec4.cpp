@@ -1,4 +1,4 @@
-// bench_vec4 — the thesis's table 2: formula (11)
+// tests/bench/bench_vec4.cpp — the thesis's table 2: formula (11)
 //   R = dot(b - (3/4) a, b dot(a, b - a)) b + (1/400) a b dot(a, b)
 // evaluated four ways — vec4 expression templates, hand-written SSE intrinsics, a plain
 // scalar struct and std::valarray<float> — timed with mlib::Timer in its four modes for
@@ -8,13 +8,6 @@
 // intrinsics_shufdot, see below), then two summary lines
 //   et_vs_intrinsics=<median over (mode, iterations) of cycles(et) / cycles(intrinsics)>
 //   valarray_vs_et=<median of cycles(valarray) / cycles(et)>
-// "cycles" are TSC ticks. One timer lap covers a batch of up to --batch evaluations (a
-// single evaluation of the fast forms is shorter than the cpuid fence itself); the fixed
-// cost of an empty lap, measured first, is subtracted from every lap. For min, max and avg
-// the figure is per evaluation (lap / batch); for sum it is the total over all iterations.
-//
-// The inputs cycle through 1024 random (a, b) pairs and every result is stored to an
-// array that is checksummed at the end, so no work can be hoisted out of the timed loop.
 #include <CLI/CLI.hpp>
 #include <smmintrin.h>
 
@@ -114,6 +107,13 @@ struct ValarrayImpl {
 };
 
 // --- inputs and outputs ---------------------------------------------------------------
+// "cycles" are TSC ticks. One timer lap covers a batch of up to --batch evaluations (a
+// single evaluation of the fast forms is shorter than the cpuid fence itself); the fixed
+// cost of an empty lap, measured first, is subtracted from every lap. For min, max and avg
+// the figure is per evaluation (lap / batch); for sum it is the total over all iterations.
+//
+// The inputs cycle through 1024 random (a, b) pairs and every result is stored to an
+// array that is checksummed at the end, so no work can be hoisted out of the timed loop.
 template <class V>
 V make(float x, float y, float z, float w);
 template <>
@@ -133,7 +133,7 @@ float first_lane(const std::valarray<float>& v) { return v[0]; }
 struct Result {
   std::string impl;
   std::uint64_t iterations;
-  double cycles[4];  // sum, min, max, avg (see the file comment)
+  double cycles[4];  // sum, min, max, avg (see "cycles" above)
 };
 
 constexpr mlib::Timer::Mode kModes[4] = {mlib::Timer::Mode::sum, mlib::Timer::Mode::min,

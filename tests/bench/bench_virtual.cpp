@@ -1,52 +1,13 @@
-// bench_virtual — the thesis's section 5.8 (figures 25–26): what a virtual call per
-// primitive costs, by array size N.
+// tests/bench/bench_virtual.cpp — the thesis's section 5.8 (figures 25–26): what a virtual
+// call per primitive costs, by array size N. The thesis kept its primitives behind a virtual
+// base class; rt2 keeps them per kind in contiguous arrays. Two experiments, two designs
+// each: `intersect` (rt2's ray/primitive tests, `virtual` against `segregated`) and `thesis`
+// (the thesis's setup, `virtual` against `plain`), described at their code below.
 //
-// The thesis kept its primitives behind a virtual base class and measured the virtual call
-// against a direct call, finding the overhead large for arrays of ~100 objects. rt2 keeps
-// primitives per kind in contiguous arrays instead. Two experiments, each with two designs:
-//
-// * experiment `intersect` — rt2's real ray/primitive tests.
-//   - `virtual`: `Primitive` with a pure virtual intersect(ray, t_min, t_max, t) and three
-//     derived classes wrapping rt2::Triangle / rt2::Sphere / rt2::Plane and calling rt2's
-//     free `intersect`; a std::vector<std::unique_ptr<Primitive>> of N heap objects (each
-//     new'd separately, as the thesis did), kinds in a fixed-seed random order with the mix
-//     of a mesh scene: 80 % triangles, 15 % spheres, 5 % planes (counts floor(0.15 N) and
-//     floor(0.05 N), the rest triangles).
-//   - `segregated`: the very same N primitives as three contiguous arrays (triangles, then
-//     spheres, then planes), each looped with a direct, inlined call.
-//   Each ray finds its nearest hit over all N primitives (t_max shrinks to the best t so
-//   far, as in a tracer). Both designs must find the same nearest t's; stderr says if not.
-//   Reading the numbers: inlined into the loop, rt2's triangle test is compiled (GCC 12,
-//   -O3) with a branch on part of its hit condition (t and u, v >= 0, before u + v <= 1),
-//   which is true often enough to mispredict (forcing a branch-free bool made triangles
-//   ~4 cycles cheaper in a trial); the out-of-line virtual version computes the whole
-//   bool branch-free. So at small N, where the indirect-branch predictor has learnt the
-//   repeating sequence of kinds, `virtual` can come out slightly faster.
-// * experiment `thesis` — the setup as the thesis describes it: "one base class and 4
-//   derived classes in one array; call one method on each element" (`virtual`, the kinds
-//   uniformly random, each object new'd) against "an array of the same length of objects
-//   of a class with no base, same method" (`plain`, objects stored by value). The method
-//   is trivial: an integer function of its argument and two members (x * m + k and three
-//   variants of the same cost in the other derived classes). The compiler may inline and
-//   vectorise the plain loop — that is part of what the virtual call costs.
-//
-// Timing: one mlib::Timer lap per pass; a pass is R rays x N primitives (intersect) or
-// S sweeps over the N objects (thesis), with R, S chosen so that a pass makes at least
-// ~2^16 calls (at least 4 rays even for the largest N). The fixed cost of an empty lap is
-// subtracted. Rays (a pool of 2^14, fixed seed) and the method's argument change from
-// pass to pass so nothing can be hoisted; every result goes into a checksum printed on
-// stderr so nothing is dead. The objects' dynamic types come from a run-time random
-// sequence, so the calls cannot be devirtualised (check: `objdump -d` shows `call *` in
-// trace_virtual and sweep_virtual). The two designs' passes alternate, so drift of a
-// shared, noisy machine hits both alike; each design gets one untimed warm-up pass per N.
-//
-// Output: CSV on stdout
-//   experiment,n,design,cycles_per_call_min,cycles_per_call_median
-// (cycles are TSC ticks per primitive test / per method call, min and median over the
-// passes), then
-//   overhead_pct_n100=<100 * (virtual / segregated - 1), medians, intersect, N = 100>
-//   overhead_pct_n100_thesis=<100 * (virtual / plain - 1), medians, thesis, N = 100>
-// (nan when N = 100 was not run).
+// Output: CSV on stdout, `experiment,n,design,cycles_per_call_min,cycles_per_call_median`
+// (TSC ticks per primitive test / per method call, over the passes), then
+// overhead_pct_n100=... (intersect) and overhead_pct_n100_thesis=... (thesis): 100 *
+// (virtual / other design - 1) of the medians at N = 100, nan when N = 100 was not run.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -76,6 +37,22 @@ constexpr std::uint64_t kMinRaysPerPass = 4;
 constexpr std::size_t kRayPool = 1u << 14;
 
 // --- intersect, design `virtual` ----------------------------------------------------------
+// Experiment `intersect`: rt2's real ray/primitive tests.
+// - `virtual`: `Primitive` with a pure virtual intersect(ray, t_min, t_max, t) and three
+//   derived classes wrapping rt2::Triangle / rt2::Sphere / rt2::Plane and calling rt2's
+//   free `intersect`; a std::vector<std::unique_ptr<Primitive>> of N heap objects (each
+//   new'd separately, as the thesis did), kinds in a fixed-seed random order with the mix
+//   of a mesh scene: 80 % triangles, 15 % spheres, 5 % planes (counts floor(0.15 N) and
+//   floor(0.05 N), the rest triangles).
+// - `segregated`: the very same N primitives as three contiguous arrays (triangles, then
+//   spheres, then planes), each looped with a direct, inlined call.
+// Each ray finds its nearest hit over all N primitives (t_max shrinks to the best t so
+// far, as in a tracer). Both designs must find the same nearest t's; stderr says if not.
+// Reading the numbers: inlined into the loop, rt2's triangle test may be compiled with a
+// branch on part of its hit condition (t and u, v >= 0, before u + v <= 1), which is true
+// often enough to mispredict; the out-of-line virtual version computes the whole bool
+// branch-free. So at small N, where the indirect-branch predictor has learnt the
+// repeating sequence of kinds, `virtual` can come out slightly faster.
 struct Primitive {
   virtual bool intersect(const Ray& r, float t_min, float t_max, float& t) const = 0;
   virtual ~Primitive();
@@ -217,6 +194,13 @@ std::vector<Ray> make_rays() {
 }
 
 // --- thesis-style: one base, 4 derived classes; a plain class -----------------------------
+// Experiment `thesis`: the setup as the thesis describes it: "one base class and 4 derived
+// classes in one array; call one method on each element" (`virtual`, the kinds uniformly
+// random, each object new'd) against "an array of the same length of objects of a class
+// with no base, same method" (`plain`, objects stored by value). The method is trivial: an
+// integer function of its argument and two members (x * m + k and three variants of the
+// same cost in the other derived classes). The compiler may inline and vectorise the plain
+// loop — that is part of what the virtual call costs.
 struct Base {
   virtual std::uint32_t value(std::uint32_t x) const = 0;
   virtual ~Base() = default;
@@ -296,6 +280,15 @@ ThesisObjects make_thesis_objects(std::size_t n) {
 }
 
 // --- measurement ------------------------------------------------------------------------
+// Timing: one mlib::Timer lap per pass; a pass is R rays x N primitives (intersect) or
+// S sweeps over the N objects (thesis), with R, S chosen so that a pass makes at least
+// ~2^16 calls (at least 4 rays even for the largest N). The fixed cost of an empty lap is
+// subtracted. Rays (a pool of 2^14, fixed seed) and the method's argument change from
+// pass to pass so nothing can be hoisted; every result goes into a checksum printed on
+// stderr so nothing is dead. The objects' dynamic types come from a run-time random
+// sequence, so the calls cannot be devirtualised (check: `objdump -d` shows `call *` in
+// trace_virtual and sweep_virtual). The two designs' passes alternate, so drift of a
+// shared, noisy machine hits both alike; each design gets one untimed warm-up pass per N.
 struct Row {
   std::string experiment;
   std::size_t n;

@@ -1,11 +1,11 @@
-// rt2cpr_mpi under Debian's mpirun, on this machine: 1, 2 and 3 ranks give the single
+// rt2cpr_mpi under Debian's mpirun: 1, 2 and 3 ranks give the single
 // process's image bits for any tile size, over passes and frames; only rank 0 prints; and
 // every way a job can fail (a bad command line, a missing scene, a scene one rank cannot
 // read, a rank out of memory, a rank killed mid-render) ends it with one line from rank 0,
 // a non-zero status and no output file.
 //
-// mpirun runs as root here only with --allow-run-as-root, on 2 cores only with
-// --oversubscribe (3 ranks of 2 threads), and --bind-to none keeps it from pinning each
+// mpirun runs as root only with --allow-run-as-root, on fewer cores than ranks x threads only
+// with --oversubscribe (3 ranks of 2 threads), and --bind-to none keeps it from pinning each
 // rank to one core. -q leaves out mpirun's own report of a failing job, so that stderr holds
 // rank 0's line alone.
 #include <gtest/gtest.h>

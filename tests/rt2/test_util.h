@@ -15,7 +15,7 @@
 
 namespace rt2::test {
 
-// Sanitizer builds run the same tests on fewer random samples (they are ~10x slower).
+// Sanitizer builds run the same tests on fewer random samples (they are much slower).
 #if defined(__SANITIZE_ADDRESS__)
 inline constexpr int kSampleScale = 10;
 #else
@@ -97,9 +97,9 @@ inline std::vector<Isa> runnable_isas() {
   return out;
 }
 
-// The nearest hit by testing every primitive with the one-triangle tests of triangle.h:
-// the oracle for the BVH. Ties at equal t go to the smaller triangle index (strict <, in
-// index order), as the BVH's do.
+// The nearest hit by testing every primitive with the one-triangle tests of
+// rt2/geometry/triangle.h: the oracle for the BVH. Ties at equal t go to the smaller triangle
+// index (strict <, in index order), as the BVH's do.
 inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max,
                        bool watertight = false) {
   Hit h;

@@ -107,7 +107,8 @@ TEST_F(Interactive, AScriptedFlightShowsTheSceneMovesItAndConvergesToTheFileRend
 }
 
 // With the panel off and the window the render's size, what the window shows is the image:
-// each pixel within one 8-bit step of the file's (the screen's sRGB table, display_pixels.h).
+// each pixel within one 8-bit step of the file's (the screen's sRGB table,
+// rt2/image/display_pixels.h).
 TEST_F(Interactive, TheWindowShowsTheImage) {
   write("s.txt", "set overlay off\nwait-still\nscreenshot img.png\nwindow-shot win.png\nquit\n");
   const Outcome r = run_window(std::string(kSize) + " --script s.txt");

@@ -1,7 +1,7 @@
 // The viewer's render worker (rt2cpr/viewer/render_worker.h) against the file render, its
 // oracle: whatever requests came before, however fast and mid-pass, the converged still of
 // a view is the same bits as rendering that view as `rt2cpr --camera ... --output` does
-// (scene_setup.h: load, set the lights, move to the camera, compile, render every pass).
+// (rt2cpr/scene_setup.h: load, set the lights, move to the camera, compile, render every pass).
 #include "rt2cpr/viewer/render_worker.h"
 
 #include <gtest/gtest.h>

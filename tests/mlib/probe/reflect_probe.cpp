@@ -1,5 +1,6 @@
-// Compiled to assembly with the release flags by tests/SConscript; asm_test.cpp counts the
-// instructions. Two forms: operands in registers, and rt2's by-const-reference form.
+// Compiled to assembly with the release flags by tests/SConscript; tests/mlib/asm_test.cpp
+// counts the instructions. Two forms: operands in registers, and rt2's by-const-reference
+// form.
 #include "mlib/vec4_functions.h"
 
 using mlib::vec4;

@@ -349,12 +349,12 @@ TEST(Bvh, AnyHitAgreesWithClosestHitOnSegments) {
 }
 
 // The node test of the AVX2 and AVX-512 kernels takes each slab distance as one FMA,
-// b * (1 / dir) + c, with c = -org * (1 / dir) rounded once per ray (wide_traverse.h). Its
-// rounding is largest beside the distances where the scene lies far from the coordinate
-// origin and rays start on it, as secondary rays do: a triangle soup three million units
-// out, rays leaving points of its triangles in random directions or aimed at other
-// triangles' vertices and edges (where boxes' faces lie). Closest hits must be brute
-// force's, bit for bit, and any-hit must agree with them on segments.
+// b * (1 / dir) + c, with c = -org * (1 / dir) rounded once per ray
+// (rt2/kernel/wide_traverse.h). Its rounding is largest beside the distances where the scene
+// lies far from the coordinate origin and rays start on it, as secondary rays do: a triangle
+// soup three million units out, rays leaving points of its triangles in random directions or
+// aimed at other triangles' vertices and edges (where boxes' faces lie). Closest hits must be
+// brute force's, bit for bit, and any-hit must agree with them on segments.
 TEST(Bvh, RaysLeavingTrianglesThreeMillionUnitsOutFindBruteForcesHitsWithEveryNodeTest) {
   Mesh soup = test::random_soup(400, 0.4f, 21);
   const vec4 far(1.5e6f, -2e6f, 3e6f);

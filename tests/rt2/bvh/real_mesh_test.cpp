@@ -1,11 +1,12 @@
 // The wide BVH on real meshes: 10^5 random rays per mesh (release; 10^4 under sanitizers),
 // for every instruction set and both triangle tests, with and without the prefetches of a
 // large tree (WideBvh::prefetch_pushed), counting the nodes and blocks visited or not (the
-// walks compiled with and without counters, wide_traverse.h), give exactly the closest hit of the
-// previous kernel — the binary SAH tree walked one triangle at a time with the one-triangle
-// tests of triangle.h (itself checked against brute force over every triangle on random
-// soups, bvh_test.cpp); the any-hit walk finds a hit exactly where that kernel does. Meshes: those of scripts/fetch-meshes that are present (scripts/test
-// fetches the bunny); a missing one is skipped with its name.
+// walks compiled with and without counters, rt2/kernel/wide_traverse.h), give exactly the
+// closest hit of a reference kernel — the binary SAH tree walked one triangle at a time with
+// the one-triangle tests of rt2/geometry/triangle.h (itself checked against brute force over every
+// triangle on random soups, bvh_test.cpp); the any-hit walk finds a hit exactly where that
+// kernel does. Meshes: those of scripts/fetch-meshes that are present (scripts/test fetches
+// the bunny); a missing one is skipped with its name.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -20,7 +21,7 @@ namespace {
 
 using test::kSampleScale;
 
-// The previous kernel: the binary tree over acc.tris, leaves tested triangle by triangle in
+// The reference kernel: the binary tree over acc.tris, leaves tested triangle by triangle in
 // index order (ties to the smaller index, as the wide walk does).
 class BinaryOracle {
  public:

@@ -162,7 +162,7 @@ TEST(Triangle, NormalIsCounterClockwiseCross) {
 }
 
 // WatertightRay reads its axes from a table (kWatertightAxes) instead of branching. Oracle:
-// the branching rule of Woop et al. as it was written before, on every direction whose
+// the branching rule of Woop et al. written out as branches, on every direction whose
 // components are drawn from values with ties, zeros of both signs, infinities and NaN.
 TEST(Triangle, WatertightRayTakesTheSameAxesAsTheBranchingRuleOnTiesZerosAndNan) {
   const float nan = std::numeric_limits<float>::quiet_NaN();

@@ -1,6 +1,6 @@
 // The light tree (rt2/lights/light_bvh.h) against brute force: a point query returns every light in
-// range (light.h's in_range, the test shading applies) in scene order, a box query returns
-// exactly the brute-force assignment, at every size, after moving, and at the extremes.
+// range (rt2/scene/light.h's in_range, the test shading applies) in scene order, a box query
+// returns exactly the brute-force assignment, at every size, after moving, and at the extremes.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Lights with a range and the culling modes that skip the others (render.h LightCulling):
+// Lights with a range and the culling modes that skip the others (rt2::LightCulling):
 // every mode gives the image of brute force over all lights, bit for bit, on random scenes of
 // 1 ... 10^4 lights; the window reaches 0 at the range; shadows can be turned off.
 #include <gtest/gtest.h>

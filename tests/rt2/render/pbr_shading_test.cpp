@@ -1,5 +1,5 @@
-// Physically based shading in the render kernel (rt2/kernel/pbr_shade.h): rendered pixels against
-// the formulas evaluated independently here, in double precision, and the properties the
+// Physically based shading in the render kernel (rt2/kernel/): rendered pixels against the
+// formulas evaluated independently here, in double precision, and the properties the
 // Whitted recursion must keep with Fresnel-weighted rays.
 #include <gtest/gtest.h>
 
@@ -27,7 +27,7 @@ D3 d3(const vec4& v) { return {v[0], v[1], v[2]}; }
 double ggx_alpha(double roughness) { return std::max(roughness * roughness, 0.002); }
 
 // The specular lobe D V F (GGX, height-correlated Smith, Schlick with F0 = f0) times n·l,
-// at n = +z, from the glTF 2.0 specification's appendix B (not from brdf.h).
+// at n = +z, from the glTF 2.0 specification's appendix B (not from rt2/shading/brdf.h).
 double reference_specular_cos(double f0, double alpha, D3 v, D3 l) {
   const D3 n{0, 0, 1};
   const double nl = dot(n, l), nv = dot(n, v);
@@ -60,10 +60,10 @@ double reference_albedo(double f0, double alpha, double mu) {
   return sum;
 }
 
-// The BRDF of brdf.h's header, f = kD base / pi + D V F with the energy-conserving
-// kD = (1 - metallic)(1 - E(v))(1 - E(l)) / (1 - E_avg), times n·l, for one channel; E
-// by reference_albedo and E_avg by reference_average_albedo, independently of brdf_lut.h's
-// table.
+// The BRDF of rt2/shading/brdf.h's header, f = kD base / pi + D V F with the
+// energy-conserving kD = (1 - metallic)(1 - E(v))(1 - E(l)) / (1 - E_avg), times n·l, for one
+// channel; E by reference_albedo and E_avg by reference_average_albedo, independently of
+// rt2/shading/brdf_lut.h's table.
 double reference_average_albedo(double f0, double alpha) {
   double e_avg = 0;
   constexpr int kMu = 32;
