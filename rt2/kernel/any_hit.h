@@ -77,12 +77,8 @@ template <bool Watertight>
 inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask lanes,
                                   float t_min, const float* t_max,
                                   TraversalCounts* counts = nullptr) {
-  PacketRays<kWidth> pr;
-  const PacketMask finite =
-      load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  alignas(64) float bound[kPacketSize];
-  lane_bounds(lanes, t_max, bound);
-  return any_hit_loaded<Watertight>(acc, pr, finite, t_min, bound,
+  LoadedPacket p(rays, lanes, t_max);
+  return any_hit_loaded<Watertight>(acc, p.rays, p.finite, t_min, p.bound,
                                     [](int, PrimRef) { return true; }, counts);
 }
 

@@ -13,7 +13,6 @@
 #include "rt2/kernel/shadow_rays.h"
 #include "rt2/kernel/surface_point.h"
 #include "rt2/lights/cluster_visibility.h"
-#include "rt2/render/ray_counts.h"
 
 namespace rt2::RT2_ISA {
 
@@ -57,13 +56,5 @@ struct Batches {
   std::vector<LightRay> light_rays;
   std::vector<vec4> colors;
 };
-
-// Appends a child of `parent` to the next batch, and counts it by kind.
-MLIB_INLINE void push_path_ray(Batches& b, const vec4& org, const vec4& dir, const vec4& weight,
-                               const PathRay& parent, RayKind kind, RayCounts& counts) {
-  b.next.push(org, dir, weight, parent.sample);
-  counts.reflection += kind == RayKind::reflection;
-  counts.refraction += kind == RayKind::refraction;
-}
 
 }  // namespace rt2::RT2_ISA

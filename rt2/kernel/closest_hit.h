@@ -85,12 +85,8 @@ inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketM
 template <bool Watertight>
 inline void closest_hit_packet(const Accel& acc, const Ray* rays, PacketMask lanes, float t_min,
                                const float* t_max, Hit* hits, TraversalCounts* counts = nullptr) {
-  PacketRays<kWidth> pr;
-  const PacketMask finite =
-      load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  alignas(64) float bound[kPacketSize];
-  lane_bounds(lanes, t_max, bound);
-  closest_hit_loaded<Watertight>(acc, pr, lanes, finite, t_min, bound, hits, counts);
+  LoadedPacket p(rays, lanes, t_max);
+  closest_hit_loaded<Watertight>(acc, p.rays, lanes, p.finite, t_min, p.bound, hits, counts);
 }
 
 // closest_hit_loaded for the rays first + l of columns, l in `lanes` (the columns are read

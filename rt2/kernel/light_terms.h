@@ -11,6 +11,7 @@
 
 #include "rt2/kernel/batches.h"
 #include "rt2/render/compiled_scene.h"
+#include "rt2/render/ray_counts.h"
 
 namespace rt2::RT2_ISA {
 

@@ -15,10 +15,10 @@
 
 #include "rt2/kernel/kernel.h"
 
-#include "rt2/geometry/offset.h"
 #include "rt2/geometry/optics.h"
 #include "rt2/kernel/batches.h"
 #include "rt2/kernel/light_terms.h"
+#include "rt2/kernel/secondary_rays.h"
 #include "rt2/render/renderer.h"
 #include "rt2/shading/brdf.h"
 
@@ -143,24 +143,11 @@ inline void pbr_spawn(const CompiledScene& sc, const RenderSettings& st, int dep
   const vec4 view = -r.ray.dir;
   const float n_dot_v = std::max(float(dot(p.n, view)), 0.0f);
   const vec4 f = fresnel_schlick(n_dot_v, p.surface.f0);
-  if (p.transmission > 0.0f) {
-    const Material& m = sc.materials[s.material];
-    const vec4 w = r.weight() * (vec4(1.0f, 1.0f, 1.0f) - f) * p.base * p.transmission;
-    if (heavy_enough(w, st.min_weight)) {
-      const float eta = s.entering ? 1.0f / m.ior : m.ior;
-      vec4 t;
-      if (refract(r.ray.dir, p.n, eta, t))
-        push_path_ray(b, offset_ray_origin(s.p, -s.ng, sc.offset_scale), t, w, r,
-                      RayKind::refraction, counts);
-      else
-        push_path_ray(b, s.above, reflect(r.ray.dir, p.n), w, r, RayKind::reflection, counts);
-    }
-  }
-  if (mirror) {
-    const vec4 w = r.weight() * f;
-    if (heavy_enough(w, st.min_weight))
-      push_path_ray(b, s.above, reflect(r.ray.dir, p.n), w, r, RayKind::reflection, counts);
-  }
+  if (p.transmission > 0.0f)
+    push_refracted(sc, r, s, p.n, sc.materials[s.material].ior,
+                   r.weight() * (vec4(1.0f, 1.0f, 1.0f) - f) * p.base * p.transmission,
+                   st.min_weight, b, counts);
+  if (mirror) push_reflected(r, s, p.n, r.weight() * f, st.min_weight, b, counts);
 }
 
 // A physically based hit: its light now and in the shadow batch, and its secondary rays.

@@ -7,10 +7,9 @@
 
 #include "rt2/kernel/kernel.h"
 
-#include "rt2/geometry/offset.h"
-#include "rt2/geometry/optics.h"
 #include "rt2/kernel/batches.h"
 #include "rt2/kernel/light_terms.h"
+#include "rt2/kernel/secondary_rays.h"
 #include "rt2/render/renderer.h"
 
 namespace rt2::RT2_ISA {
@@ -50,23 +49,10 @@ inline void phong_spawn(const CompiledScene& sc, const RenderSettings& st, int d
                         const PathRay& r, const SurfacePoint& s, Batches& b, RayCounts& counts) {
   if (depth >= st.depth) return;
   const Material& m = sc.materials[s.material];
-  if (m.transparency > 0.0f) {
-    const vec4 w = r.weight() * m.transparency;
-    if (heavy_enough(w, st.min_weight)) {
-      const float eta = s.entering ? 1.0f / m.ior : m.ior;
-      vec4 t;
-      if (refract(r.ray.dir, s.ns, eta, t))
-        push_path_ray(b, offset_ray_origin(s.p, -s.ng, sc.offset_scale), t, w, r,
-                      RayKind::refraction, counts);
-      else  // total internal reflection: the transmitted share is reflected
-        push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection, counts);
-    }
-  }
-  if (m.reflectivity > 0.0f) {
-    const vec4 w = r.weight() * m.reflectivity;
-    if (heavy_enough(w, st.min_weight))
-      push_path_ray(b, s.above, reflect(r.ray.dir, s.ns), w, r, RayKind::reflection, counts);
-  }
+  if (m.transparency > 0.0f)
+    push_refracted(sc, r, s, s.ns, m.ior, r.weight() * m.transparency, st.min_weight, b, counts);
+  if (m.reflectivity > 0.0f)
+    push_reflected(r, s, s.ns, r.weight() * m.reflectivity, st.min_weight, b, counts);
 }
 
 

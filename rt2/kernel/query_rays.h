@@ -59,6 +59,19 @@ inline PacketMask load_finite(PacketRays<kWidth>& pr, PacketMask lanes, Load&& l
   return finite == lanes || finite == 0 ? finite : load(pr, finite);
 }
 
+// rays[l] for the lanes l of `lanes` loaded for a packet query: `finite`, the lanes without a
+// NaN coordinate (load_finite), and `bound`, their t_max[l] (lane_bounds).
+struct LoadedPacket {
+  PacketRays<kWidth> rays;
+  PacketMask finite;
+  alignas(64) float bound[kPacketSize];
+  LoadedPacket(const Ray* r, PacketMask lanes, const float* t_max)
+      : finite(load_finite(rays, lanes,
+                           [r](PacketRays<kWidth>& p, PacketMask m) { return p.load(r, m); })) {
+    lane_bounds(lanes, t_max, bound);
+  }
+};
+
 // Rays c ... c + kRayLanes - 1 of a loaded packet.
 inline RayLanes<mlib::vfloat<kRayLanes>> ray_lanes(const PacketRays<kWidth>& pr, int c) {
   using V = mlib::vfloat<kRayLanes>;

@@ -103,12 +103,9 @@ inline void transmittance_packet(const Accel& acc, const std::vector<Material>& 
                                  const Ray* rays, PacketMask lanes, float t_min,
                                  const float* t_max, float* passed,
                                  TraversalCounts* counts = nullptr) {
-  PacketRays<kWidth> pr;
-  const PacketMask finite =
-      load_finite(pr, lanes, [rays](PacketRays<kWidth>& p, PacketMask m) { return p.load(rays, m); });
-  alignas(64) float bound[kPacketSize];
-  lane_bounds(lanes, t_max, bound);
-  transmittance_loaded<Watertight>(acc, materials, pr, lanes, finite, t_min, bound, passed, counts);
+  LoadedPacket p(rays, lanes, t_max);
+  transmittance_loaded<Watertight>(acc, materials, p.rays, lanes, p.finite, t_min, p.bound, passed,
+                                   counts);
 }
 
 // transmittance_loaded for the rays first + l of columns, l in `lanes` (the columns are read

@@ -39,7 +39,7 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
   for (std::size_t i = 0; i < c.materials.size(); ++i) {
     const Material& m = c.materials[i];
     c.plain_phong[i] = m.plain_phong();
-    if (m.transparency > 0.0f || m.model == Shading::pbr) c.one_ray_per_sample = false;
+    if (m.model != Shading::phong || m.transparency > 0.0f) c.one_ray_per_sample = false;
   }
   t = Clock::now();
   c.textures = TextureSet(scene.textures);

@@ -32,8 +32,8 @@ struct CompiledScene {
   std::vector<PbrSurface> pbr_surfaces;
   // Per material, Material::plain_phong() (1 or 0): read per hit by the shading lanes.
   std::vector<std::uint8_t> plain_phong;
-  // Whether no hit can spawn two secondary rays (no transparent Phong material, refracting
-  // and reflecting; no physically based one, transmitting and reflecting): then a batch of
+  // Whether no hit can spawn two secondary rays (every material Phong without transparency:
+  // a transparent one refracts and reflects, any other model may spawn two): then a batch of
   // the render kernel holds at most one ray per sample.
   bool one_ray_per_sample = true;
   std::vector<Light> lights;             // where they are this frame
