@@ -290,7 +290,10 @@ int component_count(int type) {
 // What a glTF file is read into, and from.
 class GltfReader {
  public:
-  explicit GltfReader(const std::string& path) : path_(path), model_(parse_model(path)) {}
+  GltfReader(const std::string& path, const AssetPolicy& policy)
+      : path_(path), model_(parse_model(path)) {
+    scene_.assets = policy;
+  }
 
   Scene read();
 
@@ -853,6 +856,8 @@ Scene GltfReader::read() {
 
 }  // namespace
 
-Scene read_gltf_scene(const std::string& path) { return GltfReader(path).read(); }
+Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy) {
+  return GltfReader(path, policy).read();
+}
 
 }  // namespace rt2::io

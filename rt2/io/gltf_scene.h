@@ -28,6 +28,6 @@ constexpr std::size_t kMaxGltfVertices = 1u << 26;    // all mesh instances toge
 // materials PBR materials, the first camera the scene's camera, KHR_lights_punctual lights
 // point lights; without a camera or lights the scene is framed as a bare OBJ is. The result
 // has passed Scene::validate(). Throws rt2::Error "path: ..." naming the element at fault.
-Scene read_gltf_scene(const std::string& path);
+Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy);
 
 }  // namespace rt2::io

@@ -63,35 +63,36 @@ auto guarded(const std::string& path, F&& load) -> decltype(load()) {
 
 }  // namespace
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, const AssetPolicy& policy) {
   return guarded(path, [&] {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".toml") return load_toml_scene(path);
-    if (ext == ".obj") return frame_obj(path);
-    if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
+    if (ext == ".toml") return load_toml_scene(path, policy);
+    if (ext == ".obj") return frame_obj(path, policy);
+    if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path, policy);
     error_at(path, 0, 0,
              (ext.empty() ? "no file extension" : "unknown file extension '" + ext + "'") +
                  "; expected a .toml scene, an .obj mesh or a .gltf/.glb glTF 2.0 scene");
   });
 }
 
-Scene load_toml_scene(const std::string& path) {
-  return guarded(path, [&] { return read_toml_scene(path); });
+Scene load_toml_scene(const std::string& path, const AssetPolicy& policy) {
+  return guarded(path, [&] { return read_toml_scene(path, policy); });
 }
 
 Camera load_camera(const std::string& path) {
   return guarded(path, [&] { return io::read_toml_camera(path); });
 }
 
-Scene load_gltf_scene(const std::string& path) {
-  return guarded(path, [&] { return read_gltf_scene(path); });
+Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy) {
+  return guarded(path, [&] { return read_gltf_scene(path, policy); });
 }
 
-Scene frame_obj(const std::string& obj_path) {
+Scene frame_obj(const std::string& obj_path, const AssetPolicy& policy) {
   return guarded(obj_path, [&] {
     Scene scene;
+    scene.assets = policy;
     scene.meshes.push_back(load_obj(obj_path, scene));
     const Aabb box = scene.meshes.back().bounds();
     const Framing frame = framing_of(obj_path, box, "mesh");

@@ -19,12 +19,12 @@
 namespace rt2 {
 
 // Loads `path` by its extension (any case): a .toml scene file, a bare .obj mesh which is
-// framed automatically, or a .gltf/.glb glTF 2.0 scene. Throws rt2::Error with a one-line
-// message on any problem.
-Scene load_scene(const std::string& path);
+// framed automatically, or a .gltf/.glb glTF 2.0 scene, under `policy` (which the scene
+// keeps, Scene::assets). Throws rt2::Error with a one-line message on any problem.
+Scene load_scene(const std::string& path, const AssetPolicy& policy = {});
 
 // Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
-Scene load_toml_scene(const std::string& path);
+Scene load_toml_scene(const std::string& path, const AssetPolicy& policy = {});
 
 // Reads a TOML file holding only a `[camera]` table (scenes/FORMAT.md; the block the
 // interactive viewer prints with `C`): the camera it describes.
@@ -34,19 +34,20 @@ Camera load_camera(const std::string& path);
 // (scenes/FORMAT.md: what is read and how it maps). Without a camera or without lights it is
 // framed as frame_obj frames an OBJ (no ground plane). Buffer and image files are relative
 // to its folder; images are not decoded here (TextureDesc).
-Scene load_gltf_scene(const std::string& path);
+Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy = {});
 
 // A bare OBJ, framed: camera from its bounding box (looking at the centre from the front,
 // slightly above, the whole box in view), one white light above-front, a ground plane with a
 // checker material just under the box (R / 1000 below it, R half the box's diagonal), MTL
 // materials or a default grey material.
-Scene frame_obj(const std::string& obj_path);
+Scene frame_obj(const std::string& obj_path, const AssetPolicy& policy = {});
 
 // Reads an OBJ (and its MTL libraries) through tinyobjloader into a Mesh. Each face's material
 // is `override_material` when >= 0, else the MTL material (added to `scene`; name
 // "<objfile>:<mtlname>"), else a default material (added once, name "default"). Degenerate
 // faces (zero/non-finite area) are dropped and added to scene.degenerate_triangles. Positions
-// and normals get w = 0. On an error `scene` is left as it was.
+// and normals get w = 0. The files it names are read under scene.assets. On an error `scene`
+// is left as it was.
 Mesh load_obj(const std::string& path, Scene& scene, int override_material = -1);
 
 }  // namespace rt2

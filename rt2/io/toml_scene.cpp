@@ -674,7 +674,7 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
 
 }  // namespace
 
-Scene read_toml_scene(const std::string& path) {
+Scene read_toml_scene(const std::string& path, const AssetPolicy& policy) {
   const std::string text = read_file(path, kMaxSceneBytes, "");
   check_encoding(path, text);
   TomlScreen(path, text).run();
@@ -683,6 +683,7 @@ Scene read_toml_scene(const std::string& path) {
                     {"camera", "world", "environment", "materials", "lights", "light_field",
                      "spheres", "planes", "meshes"});
   Scene scene;
+  scene.assets = policy;
   read_camera(root, scene);
   read_world(root, scene);
   const fs::path folder = fs::path(path).parent_path();

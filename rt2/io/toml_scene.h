@@ -17,7 +17,7 @@ namespace rt2::io {
 // walked section by section with Reader; the meshes it names are loaded relative to its
 // folder (rt2/io/obj_mesh.h), and the result has passed Scene::validate(). Throws
 // rt2::Error naming the file, line and column and key path of the problem.
-Scene read_toml_scene(const std::string& path);
+Scene read_toml_scene(const std::string& path, const AssetPolicy& policy);
 
 // Reads a TOML file that holds only a `[camera]` table, as a scene file's (what the
 // interactive viewer prints): the camera that table describes.

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rt2/base/asset_policy.h"
 #include "rt2/scene/camera.h"
 #include "rt2/scene/features.h"
 #include "rt2/geometry/plane.h"
@@ -57,6 +58,9 @@ struct Scene {
   // Where extra lights go (set_light_count): the scene's light field, if it has one. Its
   // lights are lights[field.first ...].
   std::optional<LightField> light_field;
+  // What the scene's files could refer to and how large its images may be: the policy it was
+  // loaded under, which compiling applies to its textures and environment.
+  AssetPolicy assets;
 
   std::vector<Sphere> spheres;
   std::vector<std::uint32_t> sphere_materials;
