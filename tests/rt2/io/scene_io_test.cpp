@@ -1442,5 +1442,31 @@ TEST(SceneIo, AnObjOfATomlSceneMayLieAnywhereButItsOwnFilesLieInItsFolder) {
                  "mtllib '../shared.mtl' lies outside the asset's folder");
 }
 
+TEST(SceneIo, AMissingMeshUnderDataMeshesSaysWhichScriptFetchesIt) {
+  TempDir dir;
+  const std::string fetched =
+      dir.write("scenes/s.toml", kCamera + "[[meshes]]\nfile = \"../data/meshes/gone.obj\"\n");
+  const std::string msg = error_of([&] { load_scene(fetched); });
+  expect_message(msg, fetched, 5, "meshes[0].file");
+  EXPECT_TRUE(contains(msg, "data/meshes/gone.obj': file not found (scripts/fetch-meshes"))
+      << msg;
+  const std::string other =
+      dir.write("scenes/o.toml", kCamera + "[[meshes]]\nfile = \"../meshes/gone.obj\"\n");
+  EXPECT_FALSE(contains(error_of([&] { load_scene(other); }), "fetch-meshes"));
+}
+
+// scenes/hall.toml in a tree without data/: the dragon's message names the script.
+TEST(SceneIo, TheHallWithoutFetchedMeshesSaysWhichScriptFetchesTheDragon) {
+  TempDir dir;
+  fs::create_directories(dir.root() / "scenes");
+  for (const char* name : {"hall.toml", "hall_pillars.obj"})
+    fs::copy_file(source_file(std::string("scenes/") + name), dir.root() / "scenes" / name,
+                  fs::copy_options::none);
+  const std::string msg = error_of([&] { load_scene(dir.path("scenes/hall.toml")); });
+  EXPECT_TRUE(contains(msg, "data/meshes/ChineseDragon-10kv.obj': file not found "
+                            "(scripts/fetch-meshes"))
+      << msg;
+}
+
 }  // namespace
 }  // namespace rt2
