@@ -1,23 +1,60 @@
 // rt2cpr/scene_setup.cpp — loading and compiling the scene of the options.
 #include "rt2cpr/scene_setup.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
 #include "rt2/scene/builtin_scene.h"
 #include "rt2/base/error.h"
+#include "rt2/io/framing.h"
 #include "rt2/io/scene_io.h"
+#include "rt2/io/text.h"
 #include "rt2cpr/clock.h"
 
 namespace rt2cpr {
 
 rt2::Scene load_scene(const Options& o) {
-  rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene);
-  if (!o.camera.empty()) scene.camera = rt2::load_camera(o.camera);
-  if (o.environment == "none")
+  rt2::Scene scene =
+      o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene, o.assets);
+  if (!o.camera.empty()) {
+    scene.camera = rt2::load_camera(o.camera);
+    scene.framed_bounds.reset();
+  }
+  rt2::io::fit_framed_camera(scene, o.render.width, o.render.height);
+  if (o.environment == "none") {
     scene.environment.reset();
-  else if (o.environment == "sky")
-    scene.environment = rt2::EnvironmentDesc{};
-  else if (!o.environment.empty())
+  } else if (o.environment == "sky") {  // the scene's sun, intensity and rotation stay
+    rt2::EnvironmentDesc sky = scene.environment.value_or(rt2::EnvironmentDesc{});
+    sky.image.clear();
+    scene.environment = sky;
+  } else if (!o.environment.empty()) {
     scene.environment = rt2::EnvironmentDesc{.image = o.environment};
+  }
+  warn_about_added_lights(scene, o.lights, o.light_range);
   return scene;
+}
+
+void warn_about_added_lights(const rt2::Scene& scene, int lights,
+                             const std::optional<rt2::RangeInterval>& range) {
+  if (lights < 0 || std::size_t(lights) <= scene.lights.size() || scene.light_field || range)
+    return;
+  // set_light_count's ring: white lights of the first light's intensity (1 without lights).
+  const float each = scene.lights.empty() ? 1.0f : scene.lights.front().intensity;
+  const std::size_t added = std::size_t(lights) - scene.lights.size();
+  float own = 0.0f;
+  for (const rt2::Light& l : scene.lights)
+    own += l.intensity * std::max({l.color[0], l.color[1], l.color[2]});
+  const double reference = own > 0.0f ? own : 1.0;
+  const double brighter = (reference + double(each) * double(added)) / reference;
+  if (!(brighter > kMaxAddedBrightening)) return;
+  char times[32];
+  std::snprintf(times, sizeof times, "%.3g", brighter);
+  rt2::io::warn("--lights " + std::to_string(lights) + " adds " + std::to_string(added) +
+                " lights without a range, " + times + " times the light of the scene's own" +
+                (scene.lights.empty() ? " (one light of intensity 1 for a scene without any)"
+                                      : "") +
+                ": what they light turns white; --light-range gives them a range");
 }
 
 void set_lights(rt2::Scene& scene, int lights, const std::optional<rt2::RangeInterval>& range) {

@@ -11,10 +11,25 @@
 
 namespace rt2cpr {
 
-// The scene of `o.scene` (the built-in one when empty), in its own coordinates, with the
-// camera of --camera and the environment of --environment when given; its lights are the
-// file's (set_lights sets them). Throws rt2::Error.
+// The scene of `o.scene` (the built-in one when empty) under o.assets, in its own
+// coordinates, with the camera of --camera when given, else a framed camera
+// (Scene::framed_bounds: a bare OBJ, a glTF without a camera) fitted to o.render's width and
+// height, and the environment of --environment when given (`sky` keeps the scene's sun,
+// intensity and rotation); its lights are the file's (set_lights sets them), with
+// warn_about_added_lights's warning. Throws rt2::Error.
 rt2::Scene load_scene(const Options& o);
+
+// How much brighter than its own lights (their summed intensity times colour) the lights
+// --lights adds may make a scene before warn_about_added_lights warns: two stops, so that
+// whatever the scene's own lights show at a quarter of white or more turns white.
+inline constexpr double kMaxAddedBrightening = 4.0;
+
+// One `warning:` line on stderr when `lights` (the total of --lights; < 0: none added) adds
+// ring lights without a range (a scene without a light field, no --light-range) that make
+// the scene more than kMaxAddedBrightening times as bright as its own lights (or one light
+// of intensity 1 when it has none): what happens, and that --light-range is the fix.
+void warn_about_added_lights(const rt2::Scene& scene, int lights,
+                             const std::optional<rt2::RangeInterval>& range);
 
 // The total light count `lights` (< 0: the scene's own) with --light-range's ranges
 // (rt2/scene/scene.h set_light_count). Throws rt2::Error when a range is given but nothing

@@ -156,15 +156,15 @@ class MtlReader {
   // others. The file is the last token (names with blanks are not supported).
   bool read_texture(std::string_view key, std::span<const std::string_view> values) {
     MtlMaterial& m = *current_;
-    std::string* file = key == "map_Kd"   ? &m.map_kd
-                        : key == "map_Ke" ? &m.map_ke
-                        : key == "map_Pr" ? &m.map_pr
-                        : key == "map_Pm" ? &m.map_pm
-                        : key == "norm"   ? &m.norm
-                                          : nullptr;
-    if (!file) return false;
+    MtlTexture* texture = key == "map_Kd"   ? &m.map_kd
+                          : key == "map_Ke" ? &m.map_ke
+                          : key == "map_Pr" ? &m.map_pr
+                          : key == "map_Pm" ? &m.map_pm
+                          : key == "norm"   ? &m.norm
+                                            : nullptr;
+    if (!texture) return false;
     if (values.empty()) fail(std::string(key) + " needs a file name");
-    *file = std::string(values.back());
+    *texture = MtlTexture{std::string(values.back()), line_};
     for (std::size_t i = 0; i + 2 < values.size(); ++i)
       if (key == "norm" && values[i] == "-bm") m.norm_scale = number("norm -bm", values[i + 1]);
     return true;
@@ -198,20 +198,20 @@ void read_mtl(const std::string& file, std::string_view text, MtlMaterials& want
 
 Material from_mtl(const MtlMaterial& t, const AddTexture& texture) {
   Material m;
-  const auto tex = [&](const std::string& file, bool srgb) {
-    return file.empty() || !texture ? kNoTexture : texture(file, srgb);
+  const auto tex = [&](std::string_view key, const MtlTexture& statement, bool srgb) {
+    return statement.file.empty() || !texture ? kNoTexture : texture(key, statement, srgb);
   };
-  m.base_color_texture = tex(t.map_kd, true);
+  m.base_color_texture = tex("map_Kd", t.map_kd, true);
   if (t.is_pbr()) {
     m.model = Shading::pbr;
     m.base_color = t.has_kd ? color(t.kd) : vec4(1.0f, 1.0f, 1.0f);
     m.metallic = clamp01(t.pm);
     m.roughness = clamp01(t.pr);
     m.emissive = vec4(std::max(t.ke[0], 0.0f), std::max(t.ke[1], 0.0f), std::max(t.ke[2], 0.0f));
-    m.emissive_texture = tex(t.map_ke, true);
-    m.roughness_texture = tex(t.map_pr, false);
-    m.metallic_texture = tex(t.map_pm, false);
-    m.normal_texture = tex(t.norm, false);
+    m.emissive_texture = tex("map_Ke", t.map_ke, true);
+    m.roughness_texture = tex("map_Pr", t.map_pr, false);
+    m.metallic_texture = tex("map_Pm", t.map_pm, false);
+    m.normal_texture = tex("norm", t.norm, false);
     m.normal_scale = t.norm_scale;
     if (t.has_ni && t.ni > 0.0f) m.ior = std::min(t.ni, 100.0f);
     // d, else 1 - Tr, below 1: the rest is transmitted

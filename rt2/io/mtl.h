@@ -20,6 +20,13 @@
 
 namespace rt2::io {
 
+// A texture statement of an MTL material: its file name as written (relative to the MTL
+// file's folder; rt2/io/obj_mesh.cpp resolves it) and where it is.
+struct MtlTexture {
+  std::string file;      // empty: none
+  std::size_t line = 0;  // the statement's line in the MTL file
+};
+
 // One MTL material as written: colours as r g b (one number is grey), the rest as given. The
 // defaults are tinyobjloader's, so that a file reads as it would through tinyobjloader.
 struct MtlMaterial {
@@ -43,11 +50,11 @@ struct MtlMaterial {
   float pr = 1.0f, pm = 0.0f;  // Pr, Pm
   bool has_pr = false, has_pm = false;
   float ke[3] = {0.0f, 0.0f, 0.0f};  // Ke
-  // Texture files (relative to the MTL file's folder as written; options such as -bm are
-  // read where they matter: norm's -bm is the normal map's scale).
-  std::string map_kd, map_ke, map_pr, map_pm, norm;
+  // Texture statements (options such as -bm are read where they matter: norm's -bm is the
+  // normal map's scale).
+  MtlTexture map_kd, map_ke, map_pr, map_pm, norm;
   float norm_scale = 1.0f;
-  bool is_pbr() const { return has_pr || has_pm || !map_pr.empty() || !map_pm.empty(); }
+  bool is_pbr() const { return has_pr || has_pm || !map_pr.file.empty() || !map_pm.file.empty(); }
 };
 
 // The materials an OBJ asks for by name (its `usemtl` names), each empty until an MTL library
@@ -66,10 +73,11 @@ using MtlMaterials = std::map<std::string, std::optional<MtlMaterial>, std::less
 void read_mtl(const std::string& file, std::string_view text, MtlMaterials& wanted);
 
 // The mapping documented in scenes/FORMAT.md: a Phong material, or a physically based one
-// when the material has any of Pr, Pm, map_Pr, map_Pm. `texture(file, srgb)` adds a
-// texture file (as written, relative to the MTL's folder) to the scene and returns its index
+// when the material has any of Pr, Pm, map_Pr, map_Pm. `texture(key, statement, srgb)` adds
+// the texture file of the statement `key` ("map_Kd", ...) to the scene and returns its index
 // (or kNoTexture to drop it); without it, textures are dropped.
-using AddTexture = std::function<std::uint32_t(const std::string& file, bool srgb)>;
+using AddTexture =
+    std::function<std::uint32_t(std::string_view key, const MtlTexture& texture, bool srgb)>;
 Material from_mtl(const MtlMaterial& t, const AddTexture& texture = nullptr);
 
 }  // namespace rt2::io

@@ -14,12 +14,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cfloat>
 #include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <span>
 #include <string>
@@ -50,7 +52,7 @@ bool parse_index(std::string_view token, long long& v) {
 // What an OBJ file says, as far as the checks and the assembly need it.
 struct ObjScan {
   std::size_t faces = 0;
-  std::vector<std::string> libraries;  // mtllib names, in order
+  std::vector<std::pair<std::string, std::size_t>> libraries;  // mtllib names and lines, in order
   // Faces of 256 corners or more: (face number from 0, corners).
   std::vector<std::pair<std::size_t, std::size_t>> big_faces;
   // The usemtl names in the order of their first use, with that line; and from face `first`
@@ -204,7 +206,7 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
       if (t.size() - 1 >= 256) scan.big_faces.emplace_back(scan.faces, t.size() - 1);
       ++scan.faces;
     } else if (t[0] == "mtllib") {
-      for (std::size_t i = 1; i < t.size(); ++i) scan.libraries.emplace_back(t[i]);
+      for (std::size_t i = 1; i < t.size(); ++i) scan.libraries.emplace_back(t[i], line);
     } else if (t[0] == "usemtl") {
       const std::string_view name = after_keyword(s);  // "usemtl Hard Wood": "Hard Wood"
       const auto [it, added] =
@@ -219,6 +221,109 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
   return scan;
 }
 
+// ---- files an OBJ or MTL names ---------------------------------------------------------
+
+// A file name as an OBJ or MTL written on Windows may give it, as a path here: backslashes
+// separate folders (`.\tex.jpg`, `textures\wood.png`); a name on a drive (`C:\tex\wood.png`,
+// `C:wood.png`) or rooted by a backslash (`\tex\wood.png`, `\\server\share\wood.png`)
+// can name no file here and is taken as its file name alone (`wood.png`).
+fs::path portable_path(std::string_view written) {
+  std::string s(written);
+  const bool drive = s.size() >= 2 && s[1] == ':' &&
+                     std::isalpha(static_cast<unsigned char>(s[0]));
+  const bool windows_root = drive || s.starts_with('\\');
+  std::replace(s.begin(), s.end(), '\\', '/');
+  if (windows_root) return fs::path(s.substr(drive ? 2 : 0)).filename();
+  return fs::path(s);
+}
+
+bool same_ignoring_case(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) ==
+                  std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+// `path` if it exists; else the path whose missing components are each the one entry of
+// their folder that matches them ignoring (ASCII) case, as Windows' file systems match
+// names; else (no such entry, or several) `path`.
+fs::path find_ignoring_case(const fs::path& path) {
+  std::error_code ec;
+  if (fs::symlink_status(path, ec).type() != fs::file_type::not_found) return path;
+  fs::path at = path.root_path();
+  for (const fs::path& part : path.relative_path()) {
+    const fs::path next = at / part;
+    if (part == "." || part == ".." ||
+        fs::symlink_status(next, ec).type() != fs::file_type::not_found) {
+      at = next;
+      continue;
+    }
+    fs::path match;
+    int matches = 0;
+    for (fs::directory_iterator it(at.empty() ? fs::path(".") : at, ec), end;
+         !ec && it != end && matches < 2; it.increment(ec)) {
+      if (same_ignoring_case(it->path().filename().string(), part.string())) {
+        match = it->path().filename();
+        ++matches;
+      }
+    }
+    if (matches != 1) return path;
+    at /= match;
+  }
+  return at;
+}
+
+// `path` after `..` and symbolic links (std::filesystem::weakly_canonical), absolute.
+fs::path canonical_path(const fs::path& path) {
+  std::error_code ec;
+  fs::path c = fs::weakly_canonical(path.empty() ? fs::path(".") : path, ec);
+  if (ec) c = fs::absolute(path, ec).lexically_normal();
+  if (c.has_relative_path() && c.filename().empty()) c = c.parent_path();  // "a/b/": "a/b"
+  return c;
+}
+
+// Whether `path`, after `..` and symbolic links, lies in `folder` (canonical_path), compared
+// component by component (so /a/bc is not in /a/b).
+bool lies_in(const fs::path& path, const fs::path& folder) {
+  const fs::path p = canonical_path(path);
+  auto q = p.begin();
+  for (auto f = folder.begin(); f != folder.end(); ++f, ++q)
+    if (q == p.end() || *q != *f) return false;
+  return true;
+}
+
+// The file an OBJ (mtllib) or an MTL (a texture statement) names: `written`, relative to
+// `folder` (the naming file's), as portable_path and find_ignoring_case find it. With a
+// `root` (the canonical folder of the OBJ; none when the scene's AssetPolicy allows outside
+// assets), a file that is regular or missing must lie in `root`, or this throws
+// "`where`: `key` 'written' lies outside the asset's folder (--allow-outside-assets reads it)".
+// A device, pipe or folder is the caller's to refuse: it is never read.
+fs::path resolve_asset(const fs::path& folder, std::string_view written,
+                       const std::optional<fs::path>& root, const std::string& where,
+                       std::string_view key) {
+  const auto confine = [&](const fs::path& p) {
+    if (!root) return;
+    std::error_code ec;
+    const fs::file_type type = fs::status(p, ec).type();
+    if (type != fs::file_type::regular && type != fs::file_type::not_found) return;
+    if (!lies_in(p, *root))
+      throw Error(one_line(where + ": " + std::string(key) + " '" + std::string(written) +
+                           "' lies outside the asset's folder (--allow-outside-assets reads it)"));
+  };
+  const fs::path as_written = folder / portable_path(written);
+  confine(as_written);
+  const fs::path found = find_ignoring_case(as_written);
+  if (found != as_written) confine(found);
+  return found;
+}
+
+// The folder an OBJ's MTL libraries and textures must lie in under `policy`; none when it
+// allows outside assets.
+std::optional<fs::path> asset_root(const std::string& obj_path, const AssetPolicy& policy) {
+  if (policy.allow_outside_assets) return std::nullopt;
+  return canonical_path(fs::path(obj_path).parent_path());
+}
+
 // ---- MTL libraries and face materials ---------------------------------------------------
 
 // The scene material of each face of one OBJ: `override_material` if >= 0, else its MTL
@@ -227,9 +332,10 @@ ObjScan scan_obj(const std::string& file, std::string_view text) {
 class FaceMaterials {
  public:
   FaceMaterials(Scene& scene, const std::string& obj_path, const ObjScan& scan,
-                const MtlMaterials& mtl, int override_material)
+                const MtlMaterials& mtl, int override_material, std::optional<fs::path> root)
       : scene_(scene),
         obj_path_(obj_path),
+        root_(std::move(root)),
         scan_(scan),
         mtl_(mtl),
         ids_(scan.material_names.size(), -1),
@@ -255,15 +361,19 @@ class FaceMaterials {
   }
 
  private:
-  // Texture files of MTL material `t`, relative to its MTL file's folder: added to the scene
-  // once per file and colour space; a file that is missing or not a regular file is dropped
-  // with a warning (the material keeps its colours, as for a missing MTL library).
+  // Texture files of MTL material `t`, relative to its MTL file's folder (resolve_asset):
+  // added to the scene once per file and colour space; a file that is missing or not a
+  // regular file is dropped with a warning (the material keeps its colours, as for a missing
+  // MTL library).
   AddTexture add_texture(const MtlMaterial& t) {
-    return [this, &t](const std::string& file, bool srgb) -> std::uint32_t {
-      const std::string path = (fs::path(t.file).parent_path() / file).string();
+    return [this, &t](std::string_view key, const MtlTexture& texture,
+                      bool srgb) -> std::uint32_t {
+      const std::string where = location(t.file, texture.line, 0);
+      const std::string path =
+          resolve_asset(fs::path(t.file).parent_path(), texture.file, root_, where, key).string();
       std::error_code ec;
       if (!fs::is_regular_file(path, ec)) {
-        warn(t.file + ": texture '" + file + "' " +
+        warn(where + ": texture '" + texture.file + "' " +
              (fs::exists(path, ec) ? "is not a regular file" : "not found") + "; ignored");
         return kNoTexture;
       }
@@ -285,6 +395,7 @@ class FaceMaterials {
 
   Scene& scene_;
   const std::string& obj_path_;
+  std::optional<fs::path> root_;  // resolve_asset's
   const ObjScan& scan_;
   const MtlMaterials& mtl_;
   std::vector<int> ids_;  // the scene material of each usemtl name, -1 until used
@@ -294,14 +405,17 @@ class FaceMaterials {
 };
 
 // The materials that the usemtl names name, from the MTL libraries that exist (read in the
-// order named), warning about the others. Returns whether one was missing.
-bool read_libraries(const std::string& obj_path, const ObjScan& scan, MtlMaterials& materials) {
+// order named, found by resolve_asset under `root`), warning about the others. Returns
+// whether one was missing.
+bool read_libraries(const std::string& obj_path, const ObjScan& scan, MtlMaterials& materials,
+                    const std::optional<fs::path>& root) {
   const fs::path folder = fs::path(obj_path).parent_path();
   std::set<std::string> seen;
   bool missing = false;
-  for (const std::string& name : scan.libraries) {
+  for (const auto& [name, line] : scan.libraries) {
     if (!seen.insert(name).second) continue;
-    const std::string path = (folder / name).string();
+    const std::string path =
+        resolve_asset(folder, name, root, location(obj_path, line, 0), "mtllib").string();
     std::error_code ec;
     const fs::file_type type = fs::status(path, ec).type();
     if (type != fs::file_type::regular) {  // devices and pipes need not end: not read
@@ -495,9 +609,11 @@ Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& s
   // The material libraries matter only without an override.
   const bool overridden = override_material >= 0;
   MtlMaterials mtl;
+  std::optional<fs::path> root;
   if (!overridden) {
+    root = asset_root(path, scene.assets);
     for (const std::string& name : scan.material_names) mtl.try_emplace(name);
-    if (!read_libraries(path, scan, mtl)) warn_unknown_usemtl(path, scan, mtl);
+    if (!read_libraries(path, scan, mtl, root)) warn_unknown_usemtl(path, scan, mtl);
   }
 
   // The text already read is parsed, not the file again; rt2 reads the materials itself, so
@@ -513,7 +629,7 @@ Mesh obj_to_mesh(const std::string& path, const std::string& file_text, Scene& s
   for (const float v : reader.GetAttrib().vertices)
     if (!std::isfinite(v)) error_at(path, 0, 0, "vertex is not finite");
 
-  FaceMaterials materials(scene, path, scan, mtl, override_material);
+  FaceMaterials materials(scene, path, scan, mtl, override_material, std::move(root));
   Fallbacks fallbacks;
   Mesh mesh = assemble(path, reader, scan, materials, fallbacks);
   if (fallbacks.count > 0) {

@@ -21,7 +21,11 @@ constexpr std::size_t kMaxObjBytes = 4096ull << 20;  // an OBJ or MTL file
 // library, is skipped): the text is checked first (every problem named with its line), its
 // MTL libraries are read relative to `path` (a missing one is a warning; none is read when
 // `override_material` >= 0), tinyobjloader parses the OBJ, and polygons are triangulated
-// (a warning names the first that ear clipping gave up on). Face materials and degenerate
+// (a warning names the first that ear clipping gave up on). Names written on Windows
+// (backslashes, drives) are read as scenes/FORMAT.md says; unless
+// scene.assets.allow_outside_assets, MTL libraries and textures must lie in the OBJ's folder
+// after `..` and symbolic links, or this throws "file:line: mtllib '../x.mtl' lies outside
+// the asset's folder (--allow-outside-assets reads it)". Face materials and degenerate
 // faces are as rt2::load_obj documents (rt2/io/scene_io.h), but on an error `scene` may keep
 // materials already added: restoring it is the caller's job. Throws rt2::Error.
 Mesh obj_to_mesh(const std::string& path, const std::string& text, Scene& scene,

@@ -30,8 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using io::error_at;
+using io::frame_camera;
 using io::Framing;
-using io::framing_camera;
 using io::framing_light;
 using io::framing_of;
 using io::kMaxObjBytes;
@@ -97,7 +97,7 @@ Scene frame_obj(const std::string& obj_path, const AssetPolicy& policy) {
     const Aabb box = scene.meshes.back().bounds();
     const Framing frame = framing_of(obj_path, box, "mesh");
     const float r = frame.radius;
-    scene.camera = framing_camera(frame);
+    frame_camera(scene, frame);
     scene.lights.push_back(framing_light(frame));
     Material ground;
     ground.diffuse = vec4(0.8f, 0.8f, 0.8f);

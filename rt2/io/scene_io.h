@@ -36,10 +36,11 @@ Camera load_camera(const std::string& path);
 // to its folder; images are not decoded here (TextureDesc).
 Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy = {});
 
-// A bare OBJ, framed: camera from its bounding box (looking at the centre from the front,
-// slightly above, the whole box in view), one white light above-front, a ground plane with a
-// checker material just under the box (R / 1000 below it, R half the box's diagonal), MTL
-// materials or a default grey material.
+// A bare OBJ, framed (rt2/io/framing.h): a camera looking at its bounding box from above,
+// in front and to the right, the whole box in view (Scene::framed_bounds records the box, so
+// that the camera can be fitted to the image), one white light above the camera's side, a
+// ground plane with a checker material just under the box (R / 1000 below it, R half the
+// box's diagonal), MTL materials or a default grey material.
 Scene frame_obj(const std::string& obj_path, const AssetPolicy& policy = {});
 
 // Reads an OBJ (and its MTL libraries) through tinyobjloader into a Mesh. Each face's material

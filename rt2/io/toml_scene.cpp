@@ -19,6 +19,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -646,6 +647,16 @@ bool finite(const vec4& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
 }
 
+// Whether `path` lies under a folder data/meshes/, which scripts/fetch-meshes fills.
+bool fetched_mesh(const std::string& path) {
+  bool data = false;
+  for (const fs::path& part : fs::path(path).lexically_normal()) {
+    if (data && part == "meshes") return true;
+    data = part == "data";
+  }
+  return false;
+}
+
 void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
   for_each_table(
       root, "meshes", {"file", "material", "scale", "rotate", "translate"}, [&](const Reader& r) {
@@ -657,6 +668,10 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
         xf.rotate_degrees = r.vector("rotate", xf.rotate_degrees, kAny);
         xf.translate = r.vector("translate", xf.translate, kAny);
 
+        std::error_code ec;
+        if (fs::status(path, ec).type() == fs::file_type::not_found && fetched_mesh(path))
+          throw Error(one_line(r.locate("file") + " '" + path +
+                               "': file not found (scripts/fetch-meshes fetches data/meshes/)"));
         Mesh mesh = obj_to_mesh(path, read_text_file(path, kMaxObjBytes, r.locate("file")), scene,
                                 override_material);
         apply_transform(mesh, xf);

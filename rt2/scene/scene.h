@@ -41,6 +41,11 @@ struct EnvironmentDesc {
 
 struct Scene {
   Camera camera;
+  // Set when the loader placed `camera` because the file gives none (a bare OBJ, a glTF
+  // without a camera): the bounds it frames, in the coordinates as loaded (recenter_on_camera
+  // does not move them). rt2/io/framing.h fit_framed_camera fits the camera to an image's
+  // width and height; empty: the file's own camera, which nothing changes.
+  std::optional<Aabb> framed_bounds;
   vec4 ambient{0.2f, 0.2f, 0.2f};      // I_amb, the ambient light
   vec4 background{0.0f, 0.0f, 0.0f};  // colour of rays that hit nothing
   // Where this scene's coordinate origin is in the world: 0 as loaded, the camera's old

@@ -93,7 +93,8 @@ TEST(Mtl, StatementsThatRt2IgnoresAreAccepted) {
   EXPECT_FLOAT_EQ(t.d, 0.5f);
   EXPECT_EQ(t.illum, 2);
   EXPECT_EQ(err.find("map_Kd"), std::string::npos) << err;  // read, not ignored
-  EXPECT_EQ(t.map_kd, "wood.png");
+  EXPECT_EQ(t.map_kd.file, "wood.png");
+  EXPECT_EQ(t.map_kd.line, 11u);
   EXPECT_NE(err.find("warning: m.mtl:9: spectral and CIE XYZ colours are not supported"),
             std::string::npos)
       << err;

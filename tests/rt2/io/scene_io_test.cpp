@@ -385,7 +385,7 @@ TEST(SceneIo, MtlUnsupportedTexturesAreOneWarningPerFileAndMissingFilesAWarningE
                      ":4: 'map_bump' is not supported; it and the other unsupported texture "
                      "statements of this file are ignored (rt2 reads map_Kd, map_Ke, map_Pr, "
                      "map_Pm and norm)\nwarning: " +
-                     dir.path("t.mtl") + ": texture 'wood.png' not found; ignored\n");
+                     dir.path("t.mtl") + ":3: texture 'wood.png' not found; ignored\n");
   const Material& m = material_named(s, "t.obj:m");
   expect_vec(m.diffuse, 0.5f, 0.5f, 0.5f);
   EXPECT_EQ(m.base_color_texture, kNoTexture);
@@ -1280,6 +1280,192 @@ TEST(SceneIo, BadKrInMtlNamesTheMtlLine) {
       dir.write("k.obj", "mtllib k.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
   Scene s;
   expect_message(error_of([&] { load_obj(obj, s); }), mtl, 3, "Kr must be a number");
+}
+
+// ---- files an OBJ or MTL names ----------------------------------------------------------
+
+const std::string kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+
+// One face per material of `materials` (m0, m1, ...), the OBJ naming `mtllib`.
+std::string obj_using(const std::string& mtllib, int materials) {
+  std::string obj = "mtllib " + mtllib + "\n" + kQuad;
+  for (int i = 0; i < materials; ++i) obj += "usemtl m" + std::to_string(i) + "\nf 1 2 3\n";
+  return obj;
+}
+
+// The file of the texture of material `name` of `s`, or "" without one.
+std::string texture_of(const Scene& s, const std::string& name) {
+  const std::uint32_t t = material_named(s, name).base_color_texture;
+  return t == kNoTexture ? "" : s.textures.at(t).path;
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return fs::equivalent(a, b, ec);
+}
+
+TEST(SceneIo, MtlTexturePathsWrittenOnWindowsResolveBesideTheMtl) {
+  TempDir dir;
+  const std::string tex = dir.write("a/tex.jpg", "x"), wood = dir.write("a/textures/wood.png", "x");
+  dir.write("a/m.mtl",
+            "newmtl m0\nmap_Kd .\\tex.jpg\n"                      // backslash, from .
+            "newmtl m1\nmap_Kd textures\\wood.png\n"              // a relative folder
+            "newmtl m2\nmap_Kd C:\\Users\\me\\Desktop\\tex.jpg\n"  // a drive: beside the MTL
+            "newmtl m3\nmap_Kd \\\\server\\share\\tex.jpg\n"      // a share: beside the MTL
+            "newmtl m4\nmap_Kd -s 1 1 1 .\\textures\\.\\wood.png\n");
+  testing::internal::CaptureStderr();
+  const Scene s = load_scene(dir.write("a/t.obj", obj_using("m.mtl", 5)));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_TRUE(same_file(texture_of(s, "t.obj:m0"), tex));
+  EXPECT_TRUE(same_file(texture_of(s, "t.obj:m1"), wood));
+  EXPECT_TRUE(same_file(texture_of(s, "t.obj:m2"), tex));
+  EXPECT_TRUE(same_file(texture_of(s, "t.obj:m3"), tex));
+  EXPECT_TRUE(same_file(texture_of(s, "t.obj:m4"), wood));
+}
+
+TEST(SceneIo, MtlTextureNamesMatchIgnoringCaseWhenOneFileMatches) {
+  TempDir dir;
+  const std::string wood = dir.write("Textures/Wood.PNG", "x");
+  dir.write("Textures/Pine.png", "x");
+  dir.write("Textures/PINE.PNG", "x");
+  dir.write("m.mtl", "newmtl m0\nmap_Kd textures\\wood.png\nnewmtl m1\nmap_Kd TEXTURES/pine.png\n");
+  testing::internal::CaptureStderr();
+  const Scene s = load_scene(dir.write("t.obj", obj_using("m.mtl", 2)));
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(same_file(texture_of(s, "t.obj:m0"), wood));
+  EXPECT_EQ(texture_of(s, "t.obj:m1"), "");  // Pine.png or PINE.PNG: neither is taken
+  EXPECT_TRUE(contains(err, "m.mtl:4: texture 'TEXTURES/pine.png' not found")) << err;
+}
+
+TEST(SceneIo, MtllibNamesWrittenOnWindowsResolveBesideTheObj) {
+  TempDir dir;
+  dir.write("a/materials/M.mtl", "newmtl m0\nKd 0.25 0.5 0.75\n");
+  for (const std::string lib : {"materials\\M.mtl", ".\\Materials\\m.MTL", "D:\\work\\M.mtl"}) {
+    SCOPED_TRACE(lib);
+    if (lib.starts_with("D:")) dir.write("a/M.mtl", "newmtl m0\nKd 0.25 0.5 0.75\n");
+    testing::internal::CaptureStderr();
+    const Scene s = load_scene(dir.write("a/t.obj", obj_using(lib, 1)));
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    expect_vec(material_named(s, "t.obj:m0").diffuse, 0.25f, 0.5f, 0.75f);
+  }
+}
+
+TEST(SceneIo, MtlTextureOutsideTheObjFolderIsRefusedUnlessAllowed) {
+  TempDir dir;
+  const std::string secret = dir.write("outside/secret.png", "x");
+  const std::string mtl = dir.write("asset/x.mtl", "newmtl m0\nKd 1 1 1\nmap_Kd ../outside/secret.png\n");
+  const std::string obj = dir.write("asset/x.obj", obj_using("x.mtl", 1));
+  EXPECT_EQ(error_of([&] { load_scene(obj); }),
+            mtl + ":3: map_Kd '../outside/secret.png' lies outside the asset's folder "
+                  "(--allow-outside-assets reads it)");
+  // Missing or absolute, written with backslashes or not: the same.
+  for (const std::string& name : {std::string("..\\outside\\gone.png"), secret}) {
+    dir.write("asset/x.mtl", "newmtl m0\nnorm " + name + "\nPr 1\n");
+    expect_message(error_of([&] { load_scene(obj); }), mtl, 2,
+                   "norm '" + name + "' lies outside the asset's folder");
+  }
+  dir.write("asset/x.mtl", "newmtl m0\nKd 1 1 1\nmap_Kd ../outside/secret.png\n");
+  const Scene s = load_scene(obj, AssetPolicy{.allow_outside_assets = true});
+  EXPECT_TRUE(same_file(texture_of(s, "x.obj:m0"), secret));
+}
+
+TEST(SceneIo, MtllibOutsideTheObjFolderIsRefusedUnlessAllowed) {
+  TempDir dir;
+  const std::string lib = dir.write("shared/m.mtl", "newmtl m0\nKd 0.5\n");
+  for (const std::string& name : {std::string("../shared/m.mtl"), lib, std::string("../none.mtl")}) {
+    SCOPED_TRACE(name);
+    const std::string obj = dir.write("asset/x.obj", "# a comment\n" + obj_using(name, 1));
+    expect_message(error_of([&] { load_scene(obj); }), obj, 2,
+                   "mtllib '" + name + "' lies outside the asset's folder "
+                   "(--allow-outside-assets reads it)");
+  }
+  const std::string obj = dir.write("asset/x.obj", obj_using("../shared/m.mtl", 1));
+  const Scene s = load_scene(obj, AssetPolicy{.allow_outside_assets = true});
+  expect_vec(material_named(s, "x.obj:m0").diffuse, 0.5f, 0.5f, 0.5f);
+}
+
+TEST(SceneIo, SymbolicLinksOutOfTheObjFolderAreRefusedAndThoseWithinFollowed) {
+  TempDir dir;
+  dir.write("outside/secret.png", "x");
+  dir.write("outside/m.mtl", "newmtl m0\nKd 0.5\n");
+  const std::string inside = dir.write("asset/real/tex.png", "x");
+  fs::create_symlink(dir.root() / "outside/secret.png", dir.root() / "asset/leak.png");
+  fs::create_symlink(dir.root() / "outside", dir.root() / "asset/linked");
+  fs::create_symlink("real", dir.root() / "asset/alias");
+  const std::string mtl = dir.write("asset/x.mtl", "newmtl m0\nmap_Kd leak.png\n");
+  const std::string obj = dir.write("asset/x.obj", obj_using("x.mtl", 1));
+  expect_message(error_of([&] { load_scene(obj); }), mtl, 2,
+                 "map_Kd 'leak.png' lies outside the asset's folder");
+  dir.write("asset/x.mtl", "newmtl m0\nmap_Kd LINKED/secret.png\n");  // found ignoring case
+  expect_message(error_of([&] { load_scene(obj); }), mtl, 2,
+                 "map_Kd 'LINKED/secret.png' lies outside the asset's folder");
+  const std::string via_link = dir.write("asset/v.obj", obj_using("linked/m.mtl", 1));
+  expect_message(error_of([&] { load_scene(via_link); }), via_link, 1,
+                 "mtllib 'linked/m.mtl' lies outside the asset's folder");
+  dir.write("asset/x.mtl", "newmtl m0\nmap_Kd alias/../alias/tex.png\n");
+  EXPECT_TRUE(same_file(texture_of(load_scene(obj), "x.obj:m0"), inside));
+}
+
+TEST(SceneIo, AFolderWhoseNameExtendsTheObjFolderIsOutsideIt) {
+  TempDir dir;
+  dir.write("assets/t.png", "x");
+  const std::string mtl = dir.write("asset/x.mtl", "newmtl m0\nmap_Kd ../assets/t.png\n");
+  const std::string obj = dir.write("asset/x.obj", obj_using("x.mtl", 1));
+  expect_message(error_of([&] { load_scene(obj); }), mtl, 2, "lies outside the asset's folder");
+}
+
+TEST(SceneIo, DevicesNamedByAnObjOrMtlStayRefusedWithAWarning) {
+  TempDir dir;
+  dir.write("x.mtl", "newmtl m0\nKd 0.5\nmap_Kd /dev/zero\n");
+  testing::internal::CaptureStderr();
+  const Scene s = load_scene(dir.write("x.obj", obj_using("x.mtl", 1) + "mtllib /dev/null\n"));
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(contains(err, "texture '/dev/zero' is not a regular file; ignored")) << err;
+  EXPECT_TRUE(contains(err, "material library '/dev/null' is not a regular file")) << err;
+  EXPECT_TRUE(s.textures.empty());
+}
+
+TEST(SceneIo, AnObjOfATomlSceneMayLieAnywhereButItsOwnFilesLieInItsFolder) {
+  TempDir dir;
+  dir.write("elsewhere/ok.mtl", "newmtl m0\nKd 0.5\n");
+  dir.write("elsewhere/ok.obj", obj_using("ok.mtl", 1));
+  dir.write("shared.mtl", "newmtl m0\nKd 0.5\n");
+  dir.write("elsewhere/bad.obj", obj_using("../shared.mtl", 1));
+  const Scene s = load_scene(
+      dir.write("scenes/s.toml", kCamera + "[[meshes]]\nfile = \"../elsewhere/ok.obj\"\n"));
+  EXPECT_EQ(s.meshes.size(), 1u);
+  expect_message(error_of([&] {
+                   load_scene(dir.write("scenes/t.toml",
+                                        kCamera + "[[meshes]]\nfile = \"../elsewhere/bad.obj\"\n"));
+                 }),
+                 dir.path("scenes") + "/../elsewhere/bad.obj", 1,
+                 "mtllib '../shared.mtl' lies outside the asset's folder");
+}
+
+TEST(SceneIo, AMissingMeshUnderDataMeshesSaysWhichScriptFetchesIt) {
+  TempDir dir;
+  const std::string fetched =
+      dir.write("scenes/s.toml", kCamera + "[[meshes]]\nfile = \"../data/meshes/gone.obj\"\n");
+  const std::string msg = error_of([&] { load_scene(fetched); });
+  expect_message(msg, fetched, 5, "meshes[0].file");
+  EXPECT_TRUE(contains(msg, "data/meshes/gone.obj': file not found (scripts/fetch-meshes"))
+      << msg;
+  const std::string other =
+      dir.write("scenes/o.toml", kCamera + "[[meshes]]\nfile = \"../meshes/gone.obj\"\n");
+  EXPECT_FALSE(contains(error_of([&] { load_scene(other); }), "fetch-meshes"));
+}
+
+// scenes/hall.toml in a tree without data/: the dragon's message names the script.
+TEST(SceneIo, TheHallWithoutFetchedMeshesSaysWhichScriptFetchesTheDragon) {
+  TempDir dir;
+  fs::create_directories(dir.root() / "scenes");
+  for (const char* name : {"hall.toml", "hall_pillars.obj"})
+    fs::copy_file(source_file(std::string("scenes/") + name), dir.root() / "scenes" / name,
+                  fs::copy_options::none);
+  const std::string msg = error_of([&] { load_scene(dir.path("scenes/hall.toml")); });
+  EXPECT_TRUE(contains(msg, "data/meshes/ChineseDragon-10kv.obj': file not found "
+                            "(scripts/fetch-meshes"))
+      << msg;
 }
 
 }  // namespace
