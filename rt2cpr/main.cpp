@@ -88,11 +88,11 @@ int run(const Options& o, Job& job) {
   if (!o.quiet) report.print_summary();
   if (!o.output.empty()) {
     rt2::write_image(o.output, image, o.display);
-    if (!o.quiet) std::printf("wrote %s\n", o.output.c_str());
+    if (!o.quiet) std::printf("wrote %s\n", printable(o.output).c_str());
   }
   if (!o.stats.empty()) {
     rt2::io::write_output_file(o.stats, report.json().dump(2) + "\n");
-    if (!o.quiet) std::printf("wrote %s\n", o.stats.c_str());
+    if (!o.quiet) std::printf("wrote %s\n", printable(o.stats).c_str());
   }
   if (!compare_error.empty()) throw rt2::Error("comparison with " + o.reference + " failed: " + compare_error);
   return 0;

@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "rt2/image/image_io.h"
 #include "tests/rt2cpr/cli_fixture.h"
@@ -344,3 +347,83 @@ TEST_F(Cli, ViewerOptionsNeedInteractiveAndFileOptionsAreRefusedWithIt) {
   expect_clean_failure(run("--interactive --target-fps -1"), "target-fps");
   expect_clean_failure(run("--interactive --frame-log " + path("log.txt")), "must end in .csv");
 }
+
+// ---- the command line in rt2cpr's words -------------------------------------------------
+
+namespace {
+
+// CLI11's own wording, from each error class its parser raises (ArgumentMismatch,
+// ConversionError, ValidationError, ExtrasError, RequiredError, RequiresError,
+// ExcludesError, InvalidError, HorribleError): none of it may reach the user.
+const char* const kCli11Phrases[] = {
+    "At Most", "At least", "required", "Expected exactly", "Expected at least",
+    "Could not convert", "is not an allowed value", "Should be true/false", "too many inputs",
+    "flag override", "not expected", "excludes", "requires", "Too many positional",
+    "should not see this"};
+
+// `s` in single quotes for the shell, which keeps newlines, tabs and ESC as they are.
+std::string sh(const std::string& s) { return "'" + s + "'"; }
+
+class CliWords : public Cli {
+ protected:
+  // A bad command line: status 2, one line "rt2cpr: ..." in rt2cpr's words. Returns the
+  // message after "rt2cpr: ".
+  std::string usage_error(const std::string& args) const {
+    const Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("rt2cpr: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << args << ": not one line: " << r.err;
+    for (const char* phrase : kCli11Phrases)
+      EXPECT_EQ(r.err.find(phrase), std::string::npos) << args << ": CLI11's words: " << r.err;
+    if (r.err.size() < 9) return r.err;
+    return r.err.substr(8, r.err.size() - 9);
+  }
+  // The statistics of a quiet render with `args` (its size, or a tiny image).
+  nlohmann::json stats_of(const std::string& args) const {
+    const std::string size = args.find("--width") == std::string::npos ? kTiny : "--quiet";
+    const Outcome r = run(size + " " + args + " --stats " + path("s.json"));
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    return nlohmann::json::parse(slurp(path("s.json")));
+  }
+};
+
+// A newline, a tab or an ESC in a path: every line rt2cpr prints stays one line, its
+// control characters escaped (or, in rt2's loader messages and warnings, made blanks).
+TEST_F(CliWords, ControlCharactersInMessagesAreEscaped) {
+  const auto one_line_without_controls = [](const Outcome& r) {
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+    for (const char c : r.err.substr(0, r.err.size() - 1))
+      EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << r.err;
+  };
+  // A scene that does not exist.
+  const Outcome missing = run(std::string(kTiny) + " --scene " + sh(path("no\nsuch.toml")));
+  EXPECT_EQ(missing.status, 1);
+  one_line_without_controls(missing);
+  EXPECT_NE(missing.err.find("such.toml"), std::string::npos) << missing.err;
+  // A scene that exists renders, and its path is one line in what is printed.
+  const std::string scene = path("new\nline.toml");
+  write("new\nline.toml", "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[materials.m]\n"
+                          "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n");
+  const Outcome ok = run("--width 24 --height 16 --scene " + sh(scene) + " --output " +
+                         sh(path("out\t.png")));
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("scene " + path("new\\nline.toml") + ":"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("wrote " + path("out\\t.png") + "\n"), std::string::npos) << ok.out;
+  EXPECT_EQ(ok.out.find("\nline.toml"), std::string::npos) << ok.out;
+  // rt2cpr's own messages about it: escaped.
+  const Outcome named = run(std::string(kTiny) + " --scene " + sh(scene) + " --reference " +
+                            sh(scene));
+  one_line_without_controls(named);
+  EXPECT_NE(named.err.find(path("new\\nline.toml")), std::string::npos) << named.err;
+  const Outcome esc = run(std::string(kTiny) + " --reference " + sh(path("\x1b[2J\tclear.exr")));
+  one_line_without_controls(esc);
+  EXPECT_NE(esc.err.find(path("\\x1b[2J\\tclear.exr")), std::string::npos) << esc.err;
+  // A warning (an MTL library that is missing) about a name holding ESC.
+  write("w.obj", "mtllib gone\x1b[31m.mtl\nv -1 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n");
+  const Outcome warned = run(std::string(kTiny) + " --scene " + path("w.obj"));
+  EXPECT_EQ(warned.status, 0) << warned.err;
+  ASSERT_FALSE(warned.err.empty());
+  one_line_without_controls(warned);
+}
+
+}  // namespace
