@@ -387,6 +387,30 @@ class CliWords : public Cli {
   }
 };
 
+// The film of 3000 x 3000 pixels takes 324 MB; the data segment is capped at 200 MB, which
+// the program and the built-in scene fit in (no output: the image codec is not loaded).
+// Under AddressSanitizer a failed allocation ends the process instead of throwing.
+TEST_F(CliWords, OutOfMemoryIsOneLineAndStatusOne) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot run under a data segment cap";
+#endif
+  const Outcome r = run_command("prlimit --data=" + std::to_string(200 << 20) + " " +
+                                RT2CPR_BIN + " --width 3000 --height 3000 --depth 0 --quiet");
+  expect_clean_failure(r, "rt2cpr: out of memory while ");
+  EXPECT_EQ(r.status, 1);
+}
+
+// JSON text is UTF-8: a path that is not (here the scene's) made the statistics fail with
+// nlohmann's "invalid UTF-8 byte" after the render.
+TEST_F(CliWords, StatsOfASceneWhosePathIsNotUtf8AreWritten) {
+  write("bad\xff.obj", "v -1 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n");
+  const Outcome r = run(std::string(kTiny) + " " + sh(path("bad\xff.obj")) + " --stats " +
+                        path("s.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["scene"], path("bad\xEF\xBF\xBD.obj"));  // U+FFFD in place of the bad byte
+}
+
 // A newline, a tab or an ESC in a path: every line rt2cpr prints stays one line, its
 // control characters escaped (or, in rt2's loader messages and warnings, made blanks).
 TEST_F(CliWords, ControlCharactersInMessagesAreEscaped) {
