@@ -51,9 +51,11 @@ struct Options {
 };
 
 // Parses argv. Returns nullopt when --help or --version was printed (exit 0). Throws
-// rt2::Error with a one-line message for any bad option or value, an empty file name, a
-// statistics file not named .json, and a statistics or image file that names an input (the
-// scene, the reference) or the other output.
+// rt2::Error with a one-line message naming the option for any bad option or value (an
+// unknown option, with the closest known one; a missing value, or another option in its
+// place; an option given twice; a number that is not one), an empty file name, an image
+// output of an unknown format, a statistics file not named .json, and a statistics or image
+// file that names an input (the scene, the reference) or the other output.
 std::optional<Options> parse_options(int argc, char** argv);
 
 }  // namespace rt2cpr
