@@ -547,6 +547,11 @@ std::optional<Options> parse_options(int argc, char** argv) {
                  "image-based light")
       ->type_name("FILE|sky|none")
       ->default_str("the scene's");
+  app.add_flag("--allow-outside-assets", o.assets.allow_outside_assets,
+               "files a scene refers to (textures, MTL libraries, glTF buffers and images) may "
+               "lie outside the folder of the file that names them");
+  integer("--max-texture-pixels", std::to_string(o.assets.max_image_pixels),
+          "the most pixels (width x height) a texture or environment image may have (>= 1)");
   file("--stats", o.stats, "write parameters, times and ray counts to FILE.json")
       ->default_str("none");
   file("--reference", o.reference, "reference image: print RMSE, PSNR, SSIM")
@@ -628,6 +633,9 @@ std::optional<Options> parse_options(int argc, char** argv) {
   float_value("--target-fps", o.interactive.target_fps);
   if (given("--leaf-size"))
     o.bvh.max_leaf_size = integer_of<std::uint32_t>("--leaf-size", numbers["--leaf-size"], 1);
+  if (given("--max-texture-pixels"))
+    o.assets.max_image_pixels =
+        integer_of<std::uint64_t>("--max-texture-pixels", numbers["--max-texture-pixels"], 1);
   check_paths(o, given);
   check_interactive(o, given);
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "rt2/base/asset_policy.h"
 #include "rt2/bvh/node.h"
 #include "rt2/base/isa.h"
 #include "rt2/render/renderer.h"
@@ -41,6 +42,9 @@ struct Options {
   rt2::Display display;  // exposure and tone curve of display outputs (.png ...)
   // --environment: an HDR image file, "sky" (procedural) or "none"; empty: the scene's.
   std::string environment;
+  // What the scene's files may refer to and how large its images may be
+  // (--allow-outside-assets, --max-texture-pixels).
+  rt2::AssetPolicy assets;
   std::string stats;   // JSON file; empty: not written
   std::string reference;  // reference image to compare against; empty: none
   bool quiet = false;

@@ -153,6 +153,8 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
   j_["environment_ms"] = compiled.times.environment_ms;
   j_["brdf_table_ms"] = compiled.times.brdf_table_ms;
   j_["textures_ms"] = compiled.times.textures_ms;
+  j_["allow_outside_assets"] = o.assets.allow_outside_assets;
+  j_["max_texture_pixels"] = o.assets.max_image_pixels;
   j_["tonemap"] = rt2::tone_curve_name(o.display.curve);
   j_["exposure"] = json_float(o.display.exposure);
 }

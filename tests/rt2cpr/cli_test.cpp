@@ -544,6 +544,32 @@ TEST_F(CliWords, EveryOutputPathErrorNamesTheUsersPath) {
   EXPECT_EQ(files_other_than_streams(), 0u);
 }
 
+TEST_F(CliWords, AssetOptionsAreDocumentedAndReachTheStats) {
+  const Outcome help = run("--help");
+  EXPECT_NE(help.out.find("--allow-outside-assets"), std::string::npos);
+  EXPECT_NE(help.out.find("--max-texture-pixels INT=268435456"), std::string::npos);
+  const auto defaults = stats_of("");
+  EXPECT_EQ(defaults["allow_outside_assets"], false);
+  EXPECT_EQ(defaults["max_texture_pixels"], 268435456u);
+  const auto given = stats_of("--allow-outside-assets --max-texture-pixels 18446744073709551615");
+  EXPECT_EQ(given["allow_outside_assets"], true);
+  EXPECT_EQ(given["max_texture_pixels"].get<std::uint64_t>(), 18446744073709551615u);
+}
+
+TEST_F(CliWords, MaxTexturePixelsIsAPositiveIntegerThatFits) {
+  const std::string range = "--max-texture-pixels needs an integer from 1 to 18446744073709551615";
+  EXPECT_EQ(usage_error("--max-texture-pixels 0"), range + ", got \"0\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels -1"), range + ", got \"-1\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels 18446744073709551616"),
+            range + ", got \"18446744073709551616\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels 1e9"),
+            "--max-texture-pixels needs an integer, got \"1e9\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels ' 5'"),
+            "--max-texture-pixels needs an integer, got \" 5\"");
+  EXPECT_EQ(usage_error("--allow-outside-assets=yes"),
+            "--allow-outside-assets takes no value, got \"yes\"");
+}
+
 // The film of 3000 x 3000 pixels takes 324 MB; the data segment is capped at 200 MB, which
 // the program and the built-in scene fit in (no output: the image codec is not loaded).
 // Under AddressSanitizer a failed allocation ends the process instead of throwing.
