@@ -1,8 +1,9 @@
 // rt2cpr/main.cpp — the command-line renderer: load a scene, build the BVH, render frames
 // with the chosen backend, report timing, write the image and the statistics.
 //
-// Every failure is one line on stderr ("rt2cpr: ...") and exit status 1 (2 for a bad
-// command line); output files appear complete or not at all (rt2/image/output_file.h).
+// Every failure is one line on stderr ("rt2cpr: ...", failure.h), whatever was thrown and
+// wherever, and exit status 1 (2 for a bad command line); output files appear complete or
+// not at all (rt2/image/output_file.h).
 //
 // The same source is rt2cpr_mpi when compiled with RT2CPR_MPI: it then runs in an MPI job
 // (rt2cpr/mpi/job.h) whose processes all load the scene and render tiles, while rank 0
@@ -11,6 +12,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,8 +54,10 @@ rt2::Image load_reference(const Options& o) {
   return ref;
 }
 
-int run(const Options& o, Job& job) {
+// `doing` says what run is doing, for the message of a failure ("out of memory while ...").
+int run(const Options& o, Job& job, const char*& doing) {
   if (o.interactive.on) {
+    doing = "running the viewer";
     viewer::run_interactive(o);
     return 0;
   }
@@ -61,6 +65,7 @@ int run(const Options& o, Job& job) {
   // the leader writes files and compares; every process of the job loads the scene.
   rt2::Image reference;
   std::unique_ptr<RenderSetup> setup;
+  doing = "loading the scene, building its BVH or allocating the image";
   job.all_or_none([&] {
     if (job.leader() && !o.output.empty()) rt2::check_writable_image(o.output);
     if (job.leader() && !o.stats.empty()) rt2::io::check_output_path(o.stats);
@@ -73,12 +78,14 @@ int run(const Options& o, Job& job) {
                 setup->build_ms);
   if (job.leader() && !o.quiet) report.print_setup();
   rt2::Image image;
+  doing = "rendering";
   job.render_frames(o, *setup, report, image);
   if (!job.leader()) return 0;
 
   // A comparison that fails now still leaves the render written, then reports the failure.
   std::string compare_error;
   if (!o.reference.empty()) {
+    doing = "comparing with the reference";
     try {
       report.compare(image, reference);
     } catch (const rt2::Error& e) {
@@ -87,12 +94,18 @@ int run(const Options& o, Job& job) {
   }
   if (!o.quiet) report.print_summary();
   if (!o.output.empty()) {
+    doing = "writing the image";
     rt2::write_image(o.output, image, o.display);
-    if (!o.quiet) std::printf("wrote %s\n", o.output.c_str());
+    if (!o.quiet) std::printf("wrote %s\n", printable(o.output).c_str());
   }
   if (!o.stats.empty()) {
-    rt2::io::write_output_file(o.stats, report.json().dump(2) + "\n");
-    if (!o.quiet) std::printf("wrote %s\n", o.stats.c_str());
+    doing = "writing the statistics";
+    // A path that is not UTF-8 (the scene's, the environment's) is written with U+FFFD in
+    // place of its bad bytes: JSON text is UTF-8.
+    const std::string json =
+        report.json().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    rt2::io::write_output_file(o.stats, json);
+    if (!o.quiet) std::printf("wrote %s\n", printable(o.stats).c_str());
   }
   if (!compare_error.empty()) throw rt2::Error("comparison with " + o.reference + " failed: " + compare_error);
   return 0;
@@ -117,30 +130,54 @@ void exec_with_passive_openmp(int argc, char** argv) {
   ::execv("/proc/self/exe", argv);  // returns only on failure: go on as we are
 }
 
+// An exception that escapes where none may (a thread, a destructor, a noexcept function)
+// ends the program through std::terminate: it too is one line and status 1, not an abort.
+[[noreturn]] void on_terminate() noexcept {
+  if (const std::exception_ptr e = std::current_exception()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (...) {
+      std::fprintf(stderr, "rt2cpr: %s\n", rt2cpr::failure_message().c_str());
+    }
+  } else {
+    std::fputs("rt2cpr: internal error: terminated without an exception\n", stderr);
+  }
+  std::_Exit(1);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::set_terminate(on_terminate);
   exec_with_passive_openmp(argc, argv);
   // Each progress and report line reaches a pipe or a log file as it is printed.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  rt2cpr::Job job(argc, argv);
+  std::optional<rt2cpr::Job> job;
+  const char* doing = "starting";
   // A failure is printed once, by the leader; the job ends with its status.
   const auto fail = [&](int status) {
-    if (job.leader()) std::fprintf(stderr, "rt2cpr: %s\n", rt2cpr::failure_message().c_str());
-    return job.fail(status);
+    if (!job || job->leader())
+      std::fprintf(stderr, "rt2cpr: %s\n", rt2cpr::failure_message(doing).c_str());
+    return job ? job->fail(status) : status;
   };
-  std::optional<rt2cpr::Options> options;
   try {
-    job.all_or_none([&] {
+    job.emplace(argc, argv);
+  } catch (...) {
+    return fail(1);
+  }
+  std::optional<rt2cpr::Options> options;
+  doing = "reading the command line";
+  try {
+    job->all_or_none([&] {
       options = rt2cpr::parse_options(argc, argv);
-      if (options) job.check(*options);
+      if (options) job->check(*options);
     });
   } catch (...) {
     return fail(2);
   }
   if (!options) return 0;  // --help, --version
   try {
-    return rt2cpr::run(*options, job);
+    return rt2cpr::run(*options, *job, doing);
   } catch (...) {
     return fail(1);
   }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "rt2/base/asset_policy.h"
 #include "rt2/bvh/node.h"
 #include "rt2/base/isa.h"
 #include "rt2/render/renderer.h"
@@ -42,6 +43,9 @@ struct Options {
   rt2::Display display;  // exposure and tone curve of display outputs (.png ...)
   // --environment: an HDR image file, "sky" (procedural) or "none"; empty: the scene's.
   std::string environment;
+  // What the scene's files may refer to and how large its images may be
+  // (--allow-outside-assets, --max-texture-pixels).
+  rt2::AssetPolicy assets;
   std::string stats;   // JSON file; empty: not written
   std::string reference;  // reference image to compare against; empty: none
   bool quiet = false;
@@ -52,9 +56,11 @@ struct Options {
 };
 
 // Parses argv. Returns nullopt when --help or --version was printed (exit 0). Throws
-// rt2::Error with a one-line message for any bad option or value, an empty file name, a
-// statistics file not named .json, and a statistics or image file that names an input (the
-// scene, the reference) or the other output.
+// rt2::Error with a one-line message naming the option for any bad option or value (an
+// unknown option, with the closest known one; a missing value, or another option in its
+// place; an option given twice; a number that is not one), an empty file name, an image
+// output of an unknown format, a statistics file not named .json, and a statistics or image
+// file that names an input (the scene, the reference) or the other output.
 std::optional<Options> parse_options(int argc, char** argv);
 
 }  // namespace rt2cpr

@@ -14,6 +14,7 @@
 #include "rt2/base/error.h"
 #include "rt2/image/image_compare.h"
 #include "rt2/base/version.h"
+#include "rt2cpr/failure.h"
 
 namespace rt2cpr {
 
@@ -152,6 +153,8 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
   j_["environment_ms"] = compiled.times.environment_ms;
   j_["brdf_table_ms"] = compiled.times.brdf_table_ms;
   j_["textures_ms"] = compiled.times.textures_ms;
+  j_["allow_outside_assets"] = o.assets.allow_outside_assets;
+  j_["max_texture_pixels"] = o.assets.max_image_pixels;
   j_["tonemap"] = rt2::tone_curve_name(o.display.curve);
   j_["exposure"] = json_float(o.display.exposure);
 }
@@ -179,7 +182,8 @@ void Report::compare(const rt2::Image& image, const rt2::Image& reference) {
 void Report::print_setup() const {
   std::printf("scene %s: %zu triangles, %zu spheres, %zu planes, %zu lights; features %s; "
               "loaded in %.1f ms\n",
-              j_["scene"].get<std::string>().c_str(), j_["triangles"].get<std::size_t>(),
+              printable(j_["scene"].get<std::string>()).c_str(),
+              j_["triangles"].get<std::size_t>(),
               j_["spheres"].get<std::size_t>(), j_["planes"].get<std::size_t>(),
               j_["lights"].get<std::size_t>(), j_["features"].get<std::string>().c_str(),
               j_["scene_load_ms"].get<double>());
@@ -189,7 +193,8 @@ void Report::print_setup() const {
                 "(opened in %.1f ms); environment %s (loaded and prefiltered in %.1f ms)\n",
                 j_["materials"].get<std::size_t>(), j_["materials_pbr"].get<std::size_t>(),
                 j_["brdf_table_ms"].get<double>(), j_["textures"].get<std::size_t>(),
-                j_["textures_ms"].get<double>(), j_["environment"].get<std::string>().c_str(),
+                j_["textures_ms"].get<double>(),
+                printable(j_["environment"].get<std::string>()).c_str(),
                 j_["environment_ms"].get<double>());
   if (j_["degenerate_triangles"].get<std::size_t>() > 0)
     std::printf("dropped %zu degenerate triangles\n", j_["degenerate_triangles"].get<std::size_t>());
@@ -288,7 +293,8 @@ void Report::print_ranks() const {
               "frame time) and bytes sent over %zu frames:\n", ranks_.size(), frame_ms_.size());
   for (const RankStats& r : ranks_) {
     std::printf("  rank %d (%s, %d threads): %llu tiles, %.1f thread-ms (%.0f %%), %.3f MB sent",
-                r.rank, r.host.c_str(), r.threads, static_cast<unsigned long long>(r.tiles),
+                r.rank, printable(r.host).c_str(), r.threads,
+                static_cast<unsigned long long>(r.tiles),
                 r.busy_ms, 100.0 * busy_share(r, frame_ms_), double(r.bytes_sent) / 1e6);
     if (r.rank == 0) std::printf("; serving messages %.2f ms", r.serve_ms);
     std::printf("\n");

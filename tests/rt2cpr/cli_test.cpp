@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "rt2/image/image_io.h"
 #include "tests/rt2cpr/cli_fixture.h"
@@ -344,3 +347,290 @@ TEST_F(Cli, ViewerOptionsNeedInteractiveAndFileOptionsAreRefusedWithIt) {
   expect_clean_failure(run("--interactive --target-fps -1"), "target-fps");
   expect_clean_failure(run("--interactive --frame-log " + path("log.txt")), "must end in .csv");
 }
+
+// ---- the command line in rt2cpr's words -------------------------------------------------
+
+namespace {
+
+// CLI11's own wording, from each error class its parser raises (ArgumentMismatch,
+// ConversionError, ValidationError, ExtrasError, RequiredError, RequiresError,
+// ExcludesError, InvalidError, HorribleError): none of it may reach the user.
+const char* const kCli11Phrases[] = {
+    "At Most", "At least", "required", "Expected exactly", "Expected at least",
+    "Could not convert", "is not an allowed value", "Should be true/false", "too many inputs",
+    "flag override", "not expected", "excludes", "requires", "Too many positional",
+    "should not see this"};
+
+// `s` in single quotes for the shell, which keeps newlines, tabs and ESC as they are.
+std::string sh(const std::string& s) { return "'" + s + "'"; }
+
+class CliWords : public Cli {
+ protected:
+  // A bad command line: status 2, one line "rt2cpr: ..." in rt2cpr's words. Returns the
+  // message after "rt2cpr: ".
+  std::string usage_error(const std::string& args) const {
+    const Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("rt2cpr: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << args << ": not one line: " << r.err;
+    for (const char* phrase : kCli11Phrases)
+      EXPECT_EQ(r.err.find(phrase), std::string::npos) << args << ": CLI11's words: " << r.err;
+    if (r.err.size() < 9) return r.err;
+    return r.err.substr(8, r.err.size() - 9);
+  }
+  // The statistics of a quiet render with `args` (its size, or a tiny image).
+  nlohmann::json stats_of(const std::string& args) const {
+    const std::string size = args.find("--width") == std::string::npos ? kTiny : "--quiet";
+    const Outcome r = run(size + " " + args + " --stats " + path("s.json"));
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    return nlohmann::json::parse(slurp(path("s.json")));
+  }
+};
+
+// CLI11's ArgumentMismatch ("At Most 1 required but received 2").
+TEST_F(CliWords, AnOptionGivenTwoValuesSaysItTakesOne) {
+  EXPECT_EQ(usage_error("--width 5 --width 6"), "--width takes one value, got 2 (\"5 6\")");
+  EXPECT_EQ(usage_error("--width 5 6"), "--width takes one value, got 2 (\"5 6\")");
+  EXPECT_EQ(usage_error("--scene a.toml --scene=b.toml"),
+            "--scene takes one value, got 2 (\"a.toml b.toml\")");
+}
+
+// CLI11's ArgumentMismatch ("1 required INT missing").
+TEST_F(CliWords, AValueOptionWithoutAValueSaysWhatItNeeds) {
+  EXPECT_EQ(usage_error("--width"), "--width needs a value (an integer)");
+  EXPECT_EQ(usage_error("--quiet --min-weight"), "--min-weight needs a value (a number)");
+  EXPECT_EQ(usage_error("--output"), "--output needs a value (a file)");
+  EXPECT_EQ(usage_error("--backend"), "--backend needs a value (a name)");
+}
+
+// CLI11's ConversionError ("Could not convert: --width = abc"); CLI11 also read "010" as
+// eight, "0x10" as sixteen and "" as zero.
+TEST_F(CliWords, ANumberThatIsNotOneIsNamedWithItsOption) {
+  EXPECT_EQ(usage_error("--width abc"), "--width needs an integer, got \"abc\"");
+  EXPECT_EQ(usage_error("--width 1.5"), "--width needs an integer, got \"1.5\"");
+  EXPECT_EQ(usage_error("--width ''"), "--width needs an integer, got \"\"");
+  EXPECT_EQ(usage_error("--frames 0x10"), "--frames needs an integer, got \"0x10\"");
+  EXPECT_EQ(usage_error("--width 99999999999"),
+            "--width needs an integer from -2147483648 to 2147483647, got \"99999999999\"");
+  EXPECT_EQ(usage_error("--leaf-size 0"),
+            "--leaf-size needs an integer from 1 to 4294967295, got \"0\"");
+  EXPECT_EQ(usage_error("--min-weight abc"), "--min-weight needs a number, got \"abc\"");
+  EXPECT_EQ(usage_error("--exposure 0x1p3"), "--exposure needs a number, got \"0x1p3\"");
+  EXPECT_EQ(stats_of("--width 010 --height 8")["width"], 10);  // not eight
+}
+
+// CLI11's ConversionError for flags ("--quiet: Should be true/false or a number"); CLI11
+// took --quiet=yes silently.
+TEST_F(CliWords, AFlagGivenAValueSaysItTakesNone) {
+  EXPECT_EQ(usage_error("--quiet=yes"), "--quiet takes no value, got \"yes\"");
+  EXPECT_EQ(usage_error("--no-bvh 1"), "--no-bvh takes no value, got \"1\"");
+}
+
+// CLI11's ExtrasError ("The following argument was not expected: b.toml").
+TEST_F(CliWords, ExtraArgumentsAreRefusedInRt2sWords) {
+  EXPECT_EQ(usage_error("a.toml b.toml"), "two scenes given: \"a.toml\" and \"b.toml\"");
+  EXPECT_EQ(usage_error("a.toml -- b.toml"), "two scenes given: \"a.toml\" and \"b.toml\"");
+  EXPECT_EQ(usage_error("-x"), "unknown option -x (see --help)");
+  EXPECT_EQ(usage_error("--frobnicate=3"), "unknown option --frobnicate (see --help)");
+}
+
+// Every kind of bad command line, CLI11's RequiredError, ExcludesError, RequiresError and
+// ValidationError included (rt2cpr declares no required, excluding or validated option, so
+// CLI11 has nothing to raise them for): each one line, status 2, in rt2cpr's words.
+TEST_F(CliWords, NoCli11WordingReachesTheUser) {
+  for (const char* args :
+       {"--width 5 --width 6", "--width", "--width x", "--quiet=2", "--quiet=", "a b c",
+        "--scene", "--scene --width 5", "--help-all", "--version=1", "- -", "--=x", "-1 -2",
+        "--interactive=no", "--lights 1 2 3", "--light-range", "--preset", "--stats",
+        "--max-texture-pixels", "--allow-outside-assets 2", "--rank0", "--threads -"})
+    usage_error(args);
+}
+
+TEST_F(CliWords, AMisspeltOptionGetsTheClosestKnownOne) {
+  EXPECT_EQ(usage_error("--subpixel 4"), "unknown option --subpixel; did you mean --subpixels?");
+  EXPECT_EQ(usage_error("--subpixel=4"), "unknown option --subpixel; did you mean --subpixels?");
+  EXPECT_EQ(usage_error("--widht 5"), "unknown option --widht; did you mean --width?");
+  EXPECT_EQ(usage_error("--Depth 5"), "unknown option --Depth; did you mean --depth?");
+  EXPECT_EQ(usage_error("--leaf 8"), "unknown option --leaf; did you mean --leaf-size?");
+  EXPECT_EQ(usage_error("--light-culing bvh"),
+            "unknown option --light-culing; did you mean --light-culling?");
+  EXPECT_EQ(usage_error("--zebra 3"), "unknown option --zebra (see --help)");
+}
+
+TEST_F(CliWords, PositionalJunkThatLooksLikeAnOptionGetsASuggestion) {
+  EXPECT_EQ(usage_error("-subpixels 4"), "unknown option -subpixels; did you mean --subpixels?");
+  EXPECT_EQ(usage_error("---depth 2"), "unknown option ---depth; did you mean --depth?");
+  EXPECT_EQ(usage_error("\xE2\x80\x94subpixels 4"),  // an em dash, as a word processor writes "--"
+            "unknown option \xE2\x80\x94subpixels; did you mean --subpixels?");
+  EXPECT_EQ(usage_error("subpixels 4"),
+            "unexpected argument \"subpixels\"; did you mean --subpixels?");
+  EXPECT_EQ(usage_error("width=4"), "unexpected argument \"width=4\"; did you mean --width?");
+}
+
+TEST_F(CliWords, AValueOptionNeverTakesTheNextOptionAsItsValue) {
+  EXPECT_EQ(usage_error("--scene --width 5"),
+            "--scene needs a value (a file), got the option --width");
+  EXPECT_EQ(usage_error("--scene=--width=5"),
+            "--scene needs a value (a file), got the option --width");
+  EXPECT_EQ(usage_error("--output -h"), "--output needs a value (a file), got the option -h");
+  EXPECT_EQ(usage_error("--output --out.png"),
+            "--output needs a value (a file), got \"--out.png\" (a value may not start with --)");
+}
+
+// Every option --help lists with a value, followed by another option: eight runs at a time.
+TEST_F(CliWords, EveryValueOptionRefusesAnOptionAsItsValue) {
+  std::istringstream lines(run("--help").out);
+  std::vector<std::string> names;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string name, type;
+    if (words >> name >> type && name.rfind("--", 0) == 0 && type.rfind("--", 0) != 0 &&
+        std::isupper(static_cast<unsigned char>(type[0])))
+      names.push_back(name);
+  }
+  EXPECT_GE(names.size(), 40u);
+  std::string script;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    script += "(" + std::string(rt2::test::kChildEnv) + RT2CPR_BIN + " " + names[i] +
+              " --quiet >/dev/null 2>" + path("err" + std::to_string(i)) + "; echo $? >" +
+              path("rc" + std::to_string(i)) + ") & " + (i % 8 == 7 ? "wait; " : "");
+  ASSERT_EQ(std::system((script + "wait").c_str()), 0);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string err = slurp(path("err" + std::to_string(i)));
+    EXPECT_EQ(slurp(path("rc" + std::to_string(i))), "2\n") << names[i] << ": " << err;
+    EXPECT_EQ(err.rfind("rt2cpr: " + names[i] + " needs a value (", 0), 0u) << err;
+    EXPECT_NE(err.find("), got the option --quiet\n"), std::string::npos) << err;
+  }
+}
+
+TEST_F(CliWords, NegativeNumbersAreValues) {
+  EXPECT_EQ(stats_of("--exposure -1")["exposure"], -1.0);
+  EXPECT_EQ(stats_of("--exposure=-1.5")["exposure"], -1.5);
+  EXPECT_EQ(stats_of("--min-weight -0 --exposure -.5")["exposure"], -0.5);
+}
+
+// OpenImageIO's reason named "image.pgn", a file of its own making.
+TEST_F(CliWords, AnUnknownOutputFormatNamesTheUsersPath) {
+  for (const std::string& args : {std::string(kTiny) + " --output " + path("a.pgn"),
+                                  "--interactive --output " + path("a.pgn")}) {
+    const std::string message = usage_error(args);
+    EXPECT_EQ(message.rfind("--output " + path("a.pgn") + ": unsupported image format '.pgn'", 0),
+              0u) << message;
+    EXPECT_EQ(message.find("image.pgn"), std::string::npos) << message;
+  }
+  const std::string no_extension = usage_error("--output " + path("a"));
+  EXPECT_EQ(no_extension.rfind("--output " + path("a") + ": no extension", 0), 0u) << no_extension;
+  EXPECT_EQ(files_other_than_streams(), 0u);
+}
+
+TEST_F(CliWords, EveryOutputPathErrorNamesTheUsersPath) {
+  const std::string missing = path("missing") + "/";
+  for (const auto& [args, named] :
+       {std::pair{"--output " + missing + "x.png", missing + "x.png"},
+        {"--stats " + missing + "s.json", missing + "s.json"},
+        {"--stats " + path("s.txt"), path("s.txt")},
+        {"--output " + path("x.exr") + " --stats " + path("x.exr"), path("x.exr")}}) {
+    const Outcome r = run(std::string(kTiny) + " " + args);
+    expect_clean_failure(r, named);
+  }
+  for (const auto& [args, named] :
+       {std::pair{"--frame-log " + missing + "f.csv", missing + "f.csv"},
+        {"--frame-log " + path("f.txt"), path("f.txt")}}) {
+    const Outcome r =
+        run_command("DISPLAY=:0 " + std::string(RT2CPR_BIN) + " --interactive " + args);
+    if (r.err.find("built without the viewer") != std::string::npos) GTEST_SKIP() << r.err;
+    expect_clean_failure(r, named);
+  }
+  EXPECT_EQ(files_other_than_streams(), 0u);
+}
+
+TEST_F(CliWords, AssetOptionsAreDocumentedAndReachTheStats) {
+  const Outcome help = run("--help");
+  EXPECT_NE(help.out.find("--allow-outside-assets"), std::string::npos);
+  EXPECT_NE(help.out.find("--max-texture-pixels INT=268435456"), std::string::npos);
+  const auto defaults = stats_of("");
+  EXPECT_EQ(defaults["allow_outside_assets"], false);
+  EXPECT_EQ(defaults["max_texture_pixels"], 268435456u);
+  const auto given = stats_of("--allow-outside-assets --max-texture-pixels 18446744073709551615");
+  EXPECT_EQ(given["allow_outside_assets"], true);
+  EXPECT_EQ(given["max_texture_pixels"].get<std::uint64_t>(), 18446744073709551615u);
+}
+
+TEST_F(CliWords, MaxTexturePixelsIsAPositiveIntegerThatFits) {
+  const std::string range = "--max-texture-pixels needs an integer from 1 to 18446744073709551615";
+  EXPECT_EQ(usage_error("--max-texture-pixels 0"), range + ", got \"0\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels -1"), range + ", got \"-1\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels 18446744073709551616"),
+            range + ", got \"18446744073709551616\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels 1e9"),
+            "--max-texture-pixels needs an integer, got \"1e9\"");
+  EXPECT_EQ(usage_error("--max-texture-pixels ' 5'"),
+            "--max-texture-pixels needs an integer, got \" 5\"");
+  EXPECT_EQ(usage_error("--allow-outside-assets=yes"),
+            "--allow-outside-assets takes no value, got \"yes\"");
+}
+
+// The film of 3000 x 3000 pixels takes 324 MB; the data segment is capped at 200 MB, which
+// the program and the built-in scene fit in (no output: the image codec is not loaded).
+// Under AddressSanitizer a failed allocation ends the process instead of throwing.
+TEST_F(CliWords, OutOfMemoryIsOneLineAndStatusOne) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot run under a data segment cap";
+#endif
+  const Outcome r = run_command("prlimit --data=" + std::to_string(200 << 20) + " " +
+                                RT2CPR_BIN + " --width 3000 --height 3000 --depth 0 --quiet");
+  expect_clean_failure(r, "rt2cpr: out of memory while ");
+  EXPECT_EQ(r.status, 1);
+}
+
+// JSON text is UTF-8: a path that is not (here the scene's) made the statistics fail with
+// nlohmann's "invalid UTF-8 byte" after the render.
+TEST_F(CliWords, StatsOfASceneWhosePathIsNotUtf8AreWritten) {
+  write("bad\xff.obj", "v -1 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n");
+  const Outcome r = run(std::string(kTiny) + " " + sh(path("bad\xff.obj")) + " --stats " +
+                        path("s.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["scene"], path("bad\xEF\xBF\xBD.obj"));  // U+FFFD in place of the bad byte
+}
+
+// A newline, a tab or an ESC in a path: every line rt2cpr prints stays one line, its
+// control characters escaped (or, in rt2's loader messages and warnings, made blanks).
+TEST_F(CliWords, ControlCharactersInMessagesAreEscaped) {
+  const auto one_line_without_controls = [](const Outcome& r) {
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+    for (const char c : r.err.substr(0, r.err.size() - 1))
+      EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << r.err;
+  };
+  // A scene that does not exist.
+  const Outcome missing = run(std::string(kTiny) + " --scene " + sh(path("no\nsuch.toml")));
+  EXPECT_EQ(missing.status, 1);
+  one_line_without_controls(missing);
+  EXPECT_NE(missing.err.find("such.toml"), std::string::npos) << missing.err;
+  // A scene that exists renders, and its path is one line in what is printed.
+  const std::string scene = path("new\nline.toml");
+  write("new\nline.toml", "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[materials.m]\n"
+                          "[[spheres]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n");
+  const Outcome ok = run("--width 24 --height 16 --scene " + sh(scene) + " --output " +
+                         sh(path("out\t.png")));
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("scene " + path("new\\nline.toml") + ":"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("wrote " + path("out\\t.png") + "\n"), std::string::npos) << ok.out;
+  EXPECT_EQ(ok.out.find("\nline.toml"), std::string::npos) << ok.out;
+  // rt2cpr's own messages about it: escaped.
+  const Outcome named = run(std::string(kTiny) + " --scene " + sh(scene) + " --reference " +
+                            sh(scene));
+  one_line_without_controls(named);
+  EXPECT_NE(named.err.find(path("new\\nline.toml")), std::string::npos) << named.err;
+  const Outcome esc = run(std::string(kTiny) + " --reference " + sh(path("\x1b[2J\tclear.exr")));
+  one_line_without_controls(esc);
+  EXPECT_NE(esc.err.find(path("\\x1b[2J\\tclear.exr")), std::string::npos) << esc.err;
+  // A warning (an MTL library that is missing) about a name holding ESC.
+  write("w.obj", "mtllib gone\x1b[31m.mtl\nv -1 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n");
+  const Outcome warned = run(std::string(kTiny) + " --scene " + path("w.obj"));
+  EXPECT_EQ(warned.status, 0) << warned.err;
+  ASSERT_FALSE(warned.err.empty());
+  one_line_without_controls(warned);
+}
+
+}  // namespace
