@@ -2,7 +2,11 @@
 #include "rt2/bvh/accel.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <string>
 
+#include "rt2/base/error.h"
+#include "rt2/base/memory.h"
 #include "rt2/scene/scene.h"
 
 namespace rt2 {
@@ -94,6 +98,13 @@ void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
 }  // namespace
 
 Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
+  std::uint64_t triangles = 0;
+  for (const Mesh& m : scene.meshes) triangles += m.faces.size();
+  const std::uint64_t need = triangles * kBytesPerTriangle, have = available_memory();
+  if (need > have)
+    throw Error("the scene's " + std::to_string(triangles) + " triangles need about " +
+                memory_size(need) + " to build and trace; " + memory_size(have) +
+                " of memory is available");
   Accel acc;
   acc.isa = isa;
   build_triangles(scene, config, acc);

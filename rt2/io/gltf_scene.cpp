@@ -21,13 +21,18 @@
 #include <filesystem>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "rt2/base/error.h"
+#include "rt2/base/memory.h"
+#include "rt2/io/asset_path.h"
 #include "rt2/io/framing.h"
+#include "rt2/io/gltf_compression.h"
+#include "rt2/io/gltf_document.h"
 #include "rt2/io/text.h"
 
 namespace rt2::io {
@@ -37,16 +42,46 @@ namespace fs = std::filesystem;
 
 // ---- loading through tinygltf -----------------------------------------------------------
 
-// The folder files may be read from: the glTF's own (FsCallbacks::user_data).
+// %XX escapes of a URI decoded (glTF URIs of files are percent-encoded).
+std::string uri_decode(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    const auto hex = [](char c) {
+      if (c >= '0' && c <= '9') return c - '0';
+      if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+      if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+      return -1;
+    };
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+
+// What tinygltf may read: the glTF's buffers beside it (FsCallbacks::user_data).
 struct Folder {
-  std::string prefix;  // the folder and a '/', as tinygltf's JoinPath makes paths
+  std::string gltf;    // the glTF file
+  std::string prefix;  // its folder and a '/', as tinygltf's JoinPath makes paths
+  AssetPolicy policy;
 };
 
-// Only regular files under the glTF's folder: tinygltf also looks in the current folder.
+// Only regular files that asset_file allows: tinygltf asks for paths it joined to the
+// glTF's folder (and also looks in the current folder).
 bool file_exists(const std::string& path, void* user) {
   const auto* folder = static_cast<const Folder*>(user);
-  std::error_code ec;
-  return path.starts_with(folder->prefix) && fs::is_regular_file(path, ec);
+  if (!path.starts_with(folder->prefix)) return false;
+  try {
+    std::error_code ec;
+    return fs::is_regular_file(
+        asset_file(folder->gltf, path.substr(folder->prefix.size()), folder->policy, ""), ec);
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 // No `~` or variable expansion (tinygltf's own uses wordexp on some systems).
@@ -98,11 +133,24 @@ std::string first_line(const std::string& msg) {
   return "tinygltf could not parse it";
 }
 
-tinygltf::Model parse_model(const std::string& path) {
+// The glTF model of `path`: checked and taken apart (gltf_document.h), read by tinygltf,
+// its compressed parts decoded (gltf_compression.h). Every buffer file it names is checked
+// with asset_file first, so that a refused one is named in rt2's words.
+tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, bool& quantized) {
   const std::string bytes = read_file(path, kMaxGltfBytes, "");
   if (bytes.empty()) error_at(path, 0, 0, "file is empty");
-  Folder folder;
-  folder.prefix = fs::path(path).parent_path().string();
+  const GltfDocument doc = read_gltf_document(path, bytes);
+  quantized = doc.quantized;
+  for (std::size_t b = 0; b < doc.buffer_files.size(); ++b) {
+    if (doc.buffer_files[b].empty()) continue;
+    const std::string at = path + ": buffers[" + std::to_string(b) + "].uri";
+    const std::string name = uri_decode(doc.buffer_files[b]);
+    std::error_code ec;
+    if (!fs::is_regular_file(asset_file(path, name, policy, at), ec))
+      error_at(at, 0, 0, "'" + one_line(name) + "': " + (fs::exists(fs::path(path).parent_path() / name, ec)
+                                                          ? "not a regular file" : "file not found"));
+  }
+  Folder folder{path, fs::path(path).parent_path().string(), policy};
   if (folder.prefix.empty()) folder.prefix = ".";
   const std::string base = folder.prefix;
   if (!folder.prefix.ends_with('/')) folder.prefix += '/';
@@ -112,12 +160,13 @@ tinygltf::Model parse_model(const std::string& path) {
   loader.SetImageLoader(&keep_undecoded, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const auto size = static_cast<unsigned int>(bytes.size());
-  const bool ok = bytes.starts_with("glTF")
-                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base)
-                      : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), size, base);
+  const std::string input = tinygltf_bytes(doc);
+  const auto* data = reinterpret_cast<const unsigned char*>(input.data());
+  const auto size = static_cast<unsigned int>(input.size());
+  const bool ok = doc.glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base)
+                          : loader.LoadASCIIFromString(&model, &err, &warn, input.data(), size, base);
   if (!ok) error_at(path, 0, 0, first_line(err));
+  decode_compressed(path, doc, model);
   return model;
 }
 
@@ -196,26 +245,6 @@ std::string named(int index, const std::string& name) {
   return "#" + std::to_string(index) + (name.empty() ? "" : " '" + one_line(name) + "'");
 }
 
-// %XX escapes of a URI decoded (glTF URIs of files are percent-encoded).
-std::string uri_decode(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    const auto hex = [](char c) {
-      if (c >= '0' && c <= '9') return c - '0';
-      if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-      if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-      return -1;
-    };
-    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
-      out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
-
 // A checked accessor: element i starts at data + i * stride, holds `components` values of
 // `component_size` bytes each, and lies within its buffer view and buffer.
 struct Accessor {
@@ -225,26 +254,30 @@ struct Accessor {
   std::size_t component_size = 0;
   bool normalized = false;
 
-  // Component k of element i as a double (normalized integers mapped to [0, 1]).
+  // Component k of element i as a double: normalized integers mapped to [0, 1] (unsigned)
+  // or [-1, 1] (signed: c / max, at least -1), as glTF 2.0 (3.11) maps them.
   double get(std::size_t i, int k) const {
     const unsigned char* p = data + i * stride + std::size_t(k) * component_size;
+    const auto read = [p](auto v) {
+      std::memcpy(&v, p, sizeof v);
+      return v;
+    };
     switch (component_type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float f;
-        std::memcpy(&f, p, 4);
-        return f;
-      }
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: return read(float{});
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const double c = read(std::int8_t{});
+        return normalized ? std::max(c / 127.0, -1.0) : c;
+      }
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        std::uint16_t u;
-        std::memcpy(&u, p, 2);
-        return normalized ? u / 65535.0 : u;
+        const double c = read(std::uint16_t{});
+        return normalized ? c / 65535.0 : c;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        std::uint32_t u;
-        std::memcpy(&u, p, 4);
-        return u;
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        const double c = read(std::int16_t{});
+        return normalized ? std::max(c / 32767.0, -1.0) : c;
       }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return read(std::uint32_t{});
       default: return 0;
     }
   }
@@ -287,11 +320,80 @@ int component_count(int type) {
   }
 }
 
+// KHR_texture_transform of a texture reference: an affine map of glTF's (u, v), offset ·
+// rotation · scale, u' = m[0] u + m[1] v + m[2], v' = m[3] u + m[4] v + m[5]. The rotation
+// turns the image counter-clockwise as it appears (v down): u' = cos u + sin v,
+// v' = -sin u + cos v, as Khronos' TextureTransformTest model checks.
+struct UvTransform {
+  std::array<double, 6> m = {1, 0, 0, 0, 1, 0};
+  bool operator==(const UvTransform&) const = default;
+};
+
+// The transform of a textureInfo's extensions (identity without one); `tex_coord` becomes
+// the set it overrides, if any.
+UvTransform uv_transform(const tinygltf::ExtensionMap& exts, int& tex_coord) {
+  UvTransform t;
+  const auto it = exts.find("KHR_texture_transform");
+  if (it == exts.end()) return t;
+  const tinygltf::Value& x = it->second;
+  const auto pair = [&](const char* key, double d0, double d1) {
+    if (!x.Has(key)) return std::array<double, 2>{d0, d1};
+    const tinygltf::Value& v = x.Get(key);
+    return std::array<double, 2>{v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble()};
+  };
+  const std::array<double, 2> offset = pair("offset", 0, 0), scale = pair("scale", 1, 1);
+  const double r = x.Has("rotation") ? x.Get("rotation").GetNumberAsDouble() : 0.0;
+  const double c = std::cos(r), sn = std::sin(r);
+  t.m = {c * scale[0], sn * scale[1], offset[0], -sn * scale[0], c * scale[1], offset[1]};
+  if (x.Has("texCoord")) tex_coord = x.Get("texCoord").GetNumberAsInt();
+  return t;
+}
+
+// KHR_materials_pbrSpecularGlossiness as metallic-roughness, per the conversion Khronos'
+// tools use: roughness = 1 - glossiness; metallic solved from the perceived brightness of
+// the diffuse and specular colours (a dielectric reflects 4 %); the base colour blends the
+// colour the diffuse term implies with the one the specular term implies by metallic².
+struct MetallicRoughness {
+  vec4 base_color;
+  float metallic = 0, roughness = 1;
+};
+
+MetallicRoughness from_specular_glossiness(const std::array<double, 3>& diffuse,
+                                           const std::array<double, 3>& specular,
+                                           double glossiness) {
+  constexpr double kDielectric = 0.04, kEpsilon = 1e-6;
+  const auto brightness = [](const std::array<double, 3>& c) {
+    return std::sqrt(0.299 * c[0] * c[0] + 0.587 * c[1] * c[1] + 0.114 * c[2] * c[2]);
+  };
+  const double one_minus_specular = 1.0 - std::max({specular[0], specular[1], specular[2]});
+  const double d = brightness(diffuse), sp = brightness(specular);
+  double metallic = 0;
+  if (sp >= kDielectric) {
+    const double a = kDielectric, b = d * one_minus_specular / (1 - kDielectric) + sp - 2 * kDielectric,
+                 c = kDielectric - sp;
+    metallic = std::clamp((-b + std::sqrt(std::max(b * b - 4 * a * c, 0.0))) / (2 * a), 0.0, 1.0);
+  }
+  MetallicRoughness out;
+  float rgb[3];
+  for (int k = 0; k < 3; ++k) {
+    const double from_diffuse =
+        diffuse[std::size_t(k)] * one_minus_specular / (1 - kDielectric) / std::max(1 - metallic, kEpsilon);
+    const double from_specular =
+        (specular[std::size_t(k)] - kDielectric * (1 - metallic)) / std::max(metallic, kEpsilon);
+    const double m2 = metallic * metallic;
+    rgb[k] = float(std::clamp(from_diffuse + (from_specular - from_diffuse) * m2, 0.0, 1.0));
+  }
+  out.base_color = vec4(rgb[0], rgb[1], rgb[2]);
+  out.metallic = float(metallic);
+  out.roughness = float(std::clamp(1.0 - glossiness, 0.0, 1.0));
+  return out;
+}
+
 // What a glTF file is read into, and from.
 class GltfReader {
  public:
   GltfReader(const std::string& path, const AssetPolicy& policy)
-      : path_(path), model_(parse_model(path)) {
+      : path_(path), model_(parse_model(path, policy, quantized_)) {
     scene_.assets = policy;
   }
 
@@ -316,13 +418,16 @@ class GltfReader {
   std::uint32_t texture(int index, bool srgb, int tex_coord, const std::string& what);
 
   std::string path_;
+  bool quantized_ = false;  // KHR_mesh_quantization: integer texture coordinates as declared
   tinygltf::Model model_;
   Scene scene_;
   std::vector<int> material_of_;  // glTF material -> scene material, or -1
+  std::vector<UvTransform> uv_transforms_;  // per glTF material (material() fills it)
   int default_material_ = -1;
   std::map<std::pair<int, bool>, std::uint32_t> textures_;  // (image, srgb) -> scene texture
   std::vector<char> on_path_;  // nodes on the current walk (cycle check)
-  std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0;
+  std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0, triangles_ = 0;
+  std::uint64_t memory_ = available_memory();  // what the triangles may take
   bool have_camera_ = false;
   std::vector<std::string> warned_;
   // Lights wait for the scene's bounds (their intensity is scaled at its centre).
@@ -431,7 +536,8 @@ std::uint32_t GltfReader::texture(int index, bool srgb, int tex_coord, const std
     t.path = fs::path(path_).filename().string() + ":" + image_at;
   } else if (!img.uri.empty()) {
     const std::string file = uri_decode(img.uri);
-    const fs::path p = fs::path(path_).parent_path() / file;
+    const fs::path p = asset_file(path_, file, scene_.assets,
+                                  path_ + ": images[" + std::to_string(image) + "].uri");
     std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
     const std::string why = st.type() == fs::file_type::not_found   ? "No such file or directory"
@@ -475,7 +581,10 @@ std::uint32_t GltfReader::material(int index) {
   if (std::size_t(index) >= model_.materials.size())
     fail("material " + std::to_string(index) + " does not exist (" +
          std::to_string(model_.materials.size()) + " materials)");
-  if (material_of_.empty()) material_of_.assign(model_.materials.size(), -1);
+  if (material_of_.empty()) {
+    material_of_.assign(model_.materials.size(), -1);
+    uv_transforms_.assign(model_.materials.size(), UvTransform{});
+  }
   if (material_of_[std::size_t(index)] >= 0) return std::uint32_t(material_of_[std::size_t(index)]);
   const tinygltf::Material& g = model_.materials[std::size_t(index)];
   const std::string at = "material " + named(index, g.name);
@@ -509,12 +618,55 @@ std::uint32_t GltfReader::material(int index) {
   m.ior = float(ior);
   m.normal_scale = float(g.normalTexture.scale);
   if (!std::isfinite(m.normal_scale)) fail(at + ": normalTexture.scale is not finite");
-  m.base_color_texture =
-      texture(pbr.baseColorTexture.index, true, pbr.baseColorTexture.texCoord, at);
-  m.metallic_roughness_texture =
-      texture(pbr.metallicRoughnessTexture.index, false, pbr.metallicRoughnessTexture.texCoord, at);
-  m.normal_texture = texture(g.normalTexture.index, false, g.normalTexture.texCoord, at);
-  m.emissive_texture = texture(g.emissiveTexture.index, true, g.emissiveTexture.texCoord, at);
+  // The texture transform of the material's first transformed texture (texture coordinates
+  // are transformed where they are read, one set per primitive).
+  std::optional<UvTransform> uv;
+  const auto tex = [&](const auto& info, bool srgb) {
+    if (info.index < 0) return kNoTexture;
+    int tex_coord = info.texCoord;
+    const UvTransform t = uv_transform(info.extensions, tex_coord);
+    if (!uv) uv = t;
+    else if (!(*uv == t))
+      warn_once("uv transforms", at + ": its textures have different KHR_texture_transform; "
+                                      "the first one is applied to all");
+    return texture(info.index, srgb, tex_coord, at);
+  };
+  m.base_color_texture = tex(pbr.baseColorTexture, true);
+  m.metallic_roughness_texture = tex(pbr.metallicRoughnessTexture, false);
+  m.normal_texture = tex(g.normalTexture, false);
+  m.emissive_texture = tex(g.emissiveTexture, true);
+  if (const auto it = g.extensions.find("KHR_materials_pbrSpecularGlossiness");
+      it != g.extensions.end()) {
+    const tinygltf::Value& x = it->second;
+    const auto numbers = [&](const char* key, std::array<double, 4> v) {
+      if (x.Has(key))
+        for (std::size_t k = 0; k < x.Get(key).ArrayLen(); ++k)
+          v[k] = x.Get(key).Get(int(k)).GetNumberAsDouble();
+      return v;
+    };
+    const std::array<double, 4> diffuse = numbers("diffuseFactor", {1, 1, 1, 1});
+    const std::array<double, 4> specular = numbers("specularFactor", {1, 1, 1, 0});
+    const double gloss = x.Has("glossinessFactor") ? x.Get("glossinessFactor").GetNumberAsDouble() : 1.0;
+    const MetallicRoughness mr = from_specular_glossiness(
+        {diffuse[0], diffuse[1], diffuse[2]}, {specular[0], specular[1], specular[2]}, gloss);
+    m.base_color = mr.base_color;
+    m.metallic = mr.metallic;
+    m.roughness = mr.roughness;
+    m.metallic_roughness_texture = kNoTexture;
+    if (x.Has("diffuseTexture")) {
+      tinygltf::TextureInfo info;
+      const tinygltf::Value& t = x.Get("diffuseTexture");
+      info.index = t.Get("index").GetNumberAsInt();
+      info.texCoord = t.Has("texCoord") ? t.Get("texCoord").GetNumberAsInt() : 0;
+      if (t.Has("extensions") && t.Get("extensions").Has("KHR_texture_transform"))
+        info.extensions["KHR_texture_transform"] = t.Get("extensions").Get("KHR_texture_transform");
+      m.base_color_texture = tex(info, true);
+    }
+    if (x.Has("specularGlossinessTexture"))
+      warn_once("specgloss texture", at + ": its specularGlossinessTexture is ignored (rt2 "
+                                          "converts specular-glossiness factors only)");
+  }
+  uv_transforms_[std::size_t(index)] = uv.value_or(UvTransform{});
   // Phong fields, for renderers of Shading::phong: the base colour diffuse, a highlight as
   // tight as the roughness, metals mirror-like when smooth; the emission adds to Ka.
   const float alpha = std::max(m.roughness * m.roughness, 0.03f);
@@ -637,9 +789,19 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   if (++primitives_ > kMaxGltfPrimitives)
     fail("more than " + std::to_string(kMaxGltfPrimitives) +
          " primitive instances (meshes of nodes shared by many parents?)");
+  if (!prim.targets.empty())
+    warn_once("morph", at + ": morph targets are ignored; meshes are drawn in their base shape");
+  const std::uint32_t scene_material = material(prim.material);
+  const UvTransform uv_transform =
+      prim.material >= 0 ? uv_transforms_[std::size_t(prim.material)] : UvTransform{};
   const int pos_index = attribute("POSITION");
   if (pos_index < 0) fail(at + ": has no POSITION attribute");
-  const Accessor pos = accessor(pos_index, at + " POSITION", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
+  // KHR_mesh_quantization allows integer positions, normals and texture coordinates.
+  const Accessor pos = accessor(pos_index, at + " POSITION",
+                                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                3);
   if (vertices_ + pos.count > kMaxGltfVertices)
     fail("more than " + std::to_string(kMaxGltfVertices) + " vertices in all mesh instances");
   vertices_ += pos.count;
@@ -657,7 +819,12 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   }
   const double det = determinant3(world);
   if (const int n_index = attribute("NORMAL"); n_index >= 0) {
-    const Accessor nrm = accessor(n_index, at + " NORMAL", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
+    const Accessor nrm = accessor(n_index, at + " NORMAL",
+                                  {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                   TINYGLTF_COMPONENT_TYPE_SHORT},
+                                  3);
+    if (nrm.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm.normalized)
+      fail(at + ": NORMAL accessor " + std::to_string(n_index) + ": integer normals must be normalized");
     if (nrm.count != pos.count)
       fail(at + ": NORMAL has " + std::to_string(nrm.count) + " elements, POSITION " +
            std::to_string(pos.count));
@@ -677,16 +844,21 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   }
   if (const int t_index = attribute("TEXCOORD_0"); t_index >= 0) {
     Accessor uv = accessor(t_index, at + " TEXCOORD_0",
-                           {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                           {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
                            2);
     if (uv.count != pos.count)
       fail(at + ": TEXCOORD_0 has " + std::to_string(uv.count) + " elements, POSITION " +
            std::to_string(pos.count));
-    uv.normalized = true;  // integer texture coordinates must be normalized (glTF 3.7.2.1)
+    // Core glTF's integer texture coordinates are normalized (3.7.2.1), whatever the flag
+    // says; KHR_mesh_quantization's may be either, as declared.
+    if (!quantized_) uv.normalized = true;
     mesh.texcoords.reserve(uv.count);
+    const std::array<double, 6>& t = uv_transform.m;
     for (std::size_t i = 0; i < uv.count; ++i) {
-      const float u = float(uv.get(i, 0)), v = float(uv.get(i, 1));
+      const double u0 = uv.get(i, 0), v0 = uv.get(i, 1);
+      const float u = float(t[0] * u0 + t[1] * v0 + t[2]), v = float(t[3] * u0 + t[4] * v0 + t[5]);
       if (!std::isfinite(u) || !std::isfinite(v))
         fail(at + ": TEXCOORD_0 " + std::to_string(i) + " is not finite");
       mesh.texcoords.push_back({u, 1.0f - v});  // glTF's image row 0 is v = 0; rt2's v = 1
@@ -713,6 +885,12 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     corners.resize(pos.count);
     for (std::size_t i = 0; i < pos.count; ++i) corners[i] = std::uint32_t(i);
   }
+  const std::size_t n_corners = corners.size();
+  triangles_ += mode == TINYGLTF_MODE_TRIANGLES ? n_corners / 3 : n_corners > 2 ? n_corners - 2 : 0;
+  if (triangles_ * kBytesPerTriangle > memory_)
+    fail("its mesh instances hold " + std::to_string(triangles_) + " triangles or more, which need "
+         "about " + memory_size(triangles_ * kBytesPerTriangle) + "; " + memory_size(memory_) +
+         " of memory is available");
   const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     // A mirroring transform (det < 0) turns the winding; glTF says to turn it back.
     if (det < 0) std::swap(b, c);
@@ -731,7 +909,7 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   } else {
     for (std::size_t i = 1; i + 1 < n; ++i) add(corners[0], corners[i], corners[i + 1]);
   }
-  mesh.face_materials.assign(mesh.faces.size(), material(prim.material));
+  mesh.face_materials.assign(mesh.faces.size(), scene_material);
   scene_.degenerate_triangles += mesh.drop_degenerate();
   if (!mesh.faces.empty()) scene_.meshes.push_back(std::move(mesh));
 }
@@ -775,6 +953,10 @@ void GltfReader::add_light(int node, const tinygltf::Value& ext, const Mat4& wor
   const Vec3d pos = transform_point(world, {0, 0, 0});
   const Vec3d dir = normalized(transform_vector(world, {0, 0, -1}));
   if (!fits_float(pos)) fail(at + ": the light's position is not finite");
+  if (lights_.size() >= kMaxGltfLights)
+    fail("more than " + std::to_string(kMaxGltfLights) +
+         " light instances (lights of nodes shared by many parents?); a scene of many lights "
+         "is a TOML scene's [light_field]");
   lights_.push_back({index, pos, dir});
 }
 

@@ -20,6 +20,7 @@ constexpr int kMaxGltfDepth = 1024;                   // node hierarchy depth
 constexpr std::size_t kMaxGltfNodeVisits = 1u << 18;  // node instances (a DAG can repeat)
 constexpr std::size_t kMaxGltfPrimitives = 1u << 16;  // primitive instances (one Mesh each)
 constexpr std::size_t kMaxGltfVertices = 1u << 26;    // all mesh instances together
+constexpr std::size_t kMaxGltfLights = 4096;          // light instances (none has a range)
 
 // Reads the glTF 2.0 file `path` (JSON or binary, told apart by its first bytes, "glTF"
 // for binary). Images are not decoded: a file image becomes a TextureDesc with its path

@@ -6,7 +6,7 @@
 
 RT2_BUILD_PACKAGES="scons g++ pkg-config libgtest-dev libgmock-dev libtbb-dev \
 libtinyobjloader-dev libopenimageio-dev openimageio-tools libcli11-dev libtomlplusplus-dev \
-nlohmann-json3-dev libtinygltf-dev assimp-testmodels jq libsdl2-dev libimgui-dev xvfb xauth \
+nlohmann-json3-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev assimp-testmodels jq libsdl2-dev libimgui-dev xvfb xauth \
 libopenmpi-dev openmpi-bin"
 
 ensure_packages() {

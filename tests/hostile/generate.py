@@ -638,15 +638,15 @@ def gltf():
     error("glb_json_chunk_too_long", "glb", "",
           glb=good_glb[:12] + (1 << 30).to_bytes(4, "little") + good_glb[16:])
     error("glb_truncated", "glb", "", glb=good_glb[: len(good_glb) - 10])
-    # tinygltf does not check the version field of the header; the layout is 2.0's.
-    ok("glb_version_1", "glb", "quiet: true\nfaces: 1\n",
-       glb=good_glb[:4] + (1).to_bytes(4, "little") + good_glb[8:])
+    # Version 1 of the binary container is glTF 1.0's.
+    error("glb_version_1", "glb", "glTF 1.0 is not supported",
+          glb=good_glb[:4] + (1).to_bytes(4, "little") + good_glb[8:])
     error("glb_not_glb", "glb", "", glb=b"\x00\x01garbage bytes\xff\xfe")
     # Accessors and buffer views.
     error("gltf_accessor_out_of_range", "gltf", "accessor 7 does not exist",
           gltf=gltf_text(primitive={"attributes": {"POSITION": 7}}))
     # tinygltf drops an attribute whose accessor is negative.
-    error("gltf_accessor_negative", "gltf", "has no POSITION attribute",
+    error("gltf_accessor_negative", "gltf", "attributes.POSITION is -2",
           gltf=gltf_text(primitive={"attributes": {"POSITION": -2}}))
     error("gltf_buffer_view_beyond_buffer", "gltf", "lies beyond its buffer",
           gltf=gltf_text(views=[{"buffer": 0, "byteOffset": 24, "byteLength": 36}]))
@@ -661,8 +661,8 @@ def gltf():
     error("gltf_huge_count", "gltf", "is too large",
           gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5126,
                                      "count": 4000000000, "type": "VEC3"}]))
-    error("gltf_position_unsigned_short", "gltf", "components are unsigned short, expected float",
-          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5123, "count": 3,
+    error("gltf_position_unsigned_int", "gltf", "components are unsigned int, expected float",
+          gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5125, "count": 3,
                                      "type": "VEC3"}]))
     error("gltf_position_vec2", "gltf", "expected 3",
           gltf=gltf_text(accessors=[{"bufferView": 0, "componentType": 5126, "count": 3,
@@ -693,7 +693,7 @@ def gltf():
     missing_bin, _ = gltf_json()
     missing_bin["buffers"][0]["uri"] = "missing.bin"
     import json
-    error("gltf_missing_buffer_file", "gltf", "missing.bin", gltf=json.dumps(missing_bin))
+    error("gltf_missing_buffer_file", "gltf", "buffers[0].uri: 'missing.bin': file not found", gltf=json.dumps(missing_bin))
     missing_bin["buffers"][0]["uri"] = "."
     error("gltf_buffer_is_directory", "gltf", "", gltf=json.dumps(missing_bin))
     missing_bin["buffers"][0]["uri"] = "../hostile/gltf_minimal.gltf"
@@ -728,15 +728,22 @@ def gltf():
           gltf=gltf_text(nodes=[{"mesh": 0, "children": [9]}]))
     error("gltf_deep_nodes", "gltf", "nested more than 1024 deep",
           gltf=gltf_text(nodes=[{"children": [i + 1]} for i in range(2000)] + [{"mesh": 0}]))
+    # Nodes shared by two parents at each of 40 levels: 2^40 paths to the last.
+    def doubling(levels, first, last):
+        """Level i holds nodes first + 2i and first + 2i + 1, each a parent of both nodes of
+        level i + 1; the last level's nodes are `last`."""
+        out = []
+        for i in range(levels):
+            nxt = [first + 2 * i + 2, first + 2 * i + 3]
+            out += [{"children": nxt}, {"children": nxt}]
+        return out + [dict(last), dict(last)]
     error("gltf_shared_nodes_explode", "gltf", "primitive instances",
-          gltf=gltf_text(nodes=[{"children": [i + 1, i + 1]} for i in range(40)] +
-                         [{"mesh": 0}]))
+          gltf=gltf_text(nodes=doubling(40, 0, {"mesh": 0})))
     error("gltf_shared_empty_nodes_explode", "gltf", "node instances",
-          gltf=gltf_text(nodes=[{"mesh": 0, "children": [1]}] +
-                         [{"children": [i + 2, i + 2]} for i in range(40)] + [{}]))
+          gltf=gltf_text(nodes=[{"mesh": 0, "children": [1, 2]}] + doubling(40, 1, {})))
     error("gltf_default_scene_out_of_range", "gltf", "scene 5 does not exist",
           gltf=gltf_text(extra={"scene": 5}))
-    error("gltf_matrix_15_numbers", "gltf", "matrix has 15 numbers, expected 16",
+    error("gltf_matrix_15_numbers", "gltf", "matrix has 15 elements, expected 16",
           gltf=gltf_text(nodes=[{"mesh": 0, "matrix": [1] * 15}]))
     error("gltf_zero_quaternion", "gltf", "rotation is a zero quaternion",
           gltf=gltf_text(nodes=[{"mesh": 0, "rotation": [0, 0, 0, 0]}]))
@@ -756,7 +763,7 @@ def gltf():
     # Cameras and lights.
     error("gltf_camera_out_of_range", "gltf", "camera 2 does not exist",
           gltf=gltf_text(nodes=[{"mesh": 0, "children": [1]}, {"camera": 2}]))
-    error("gltf_yfov_zero", "gltf", "yfov 0 is not in (0, pi)",
+    error("gltf_yfov_zero", "gltf", "perspective.yfov is 0, expected > 0",
           gltf=gltf_text(extra={"cameras": [{"type": "perspective",
                                              "perspective": {"yfov": 0, "znear": 0.1}}]},
                          nodes=[{"mesh": 0, "children": [1]}, {"camera": 0}]))
@@ -776,6 +783,85 @@ def gltf():
            {"type": "directional", "intensity": 3}]}}},
            nodes=[{"mesh": 0, "children": [1]}, {
                "extensions": {"KHR_lights_punctual": {"light": 0}}}]))
+
+
+def gltf_assets():
+    """glTF as the tools write it and as an attacker would: extensions, glTF 1.0, JSON bombs,
+    schema violations, files outside the asset's folder, compressed data that lies."""
+    import json
+    tri_mat = {"attributes": {"POSITION": 0}, "material": 0}
+    error("gltf_deep_json", "gltf", "JSON nests arrays and objects more than 128 deep",
+          gltf='{"asset":{"version":"2.0"},"extras":' + "[" * 100000 + "]" * 100000 + "}")
+    error("gltf_deep_json_unclosed", "gltf", "more than 128 deep", gltf="{" * 100000)
+    error("gltf_version_1", "gltf", "glTF 1.0 is not supported (asset.version '1.0')",
+          gltf='{"asset": {"version": "1.0"}, "meshes": {"m": {"primitives": []}}}\n')
+    error("gltf_version_1_keyed", "gltf", "glTF 1.0 is not supported",
+          gltf='{"meshes": {"m": {"primitives": []}}}\n')
+    error("gltf_required_unknown", "gltf", "requires extension EXT_unknown_thing",
+          gltf=gltf_text(extra={"extensionsUsed": ["EXT_unknown_thing"],
+                                "extensionsRequired": ["EXT_unknown_thing"]}))
+    ok("gltf_used_unknown", "gltf", "faces: 1\nwarning: ignores extension VENDOR_thing\n",
+       gltf=gltf_text(extra={"extensionsUsed": ["VENDOR_thing"]}))
+    error("gltf_negative_byte_stride", "gltf", "bufferViews[0].byteStride is -12",
+          gltf=gltf_text(views=[{"buffer": 0, "byteLength": 36, "byteStride": -12}]))
+    error("gltf_negative_byte_offset", "gltf", "bufferViews[0].byteOffset is -4",
+          gltf=gltf_text(views=[{"buffer": 0, "byteOffset": -4, "byteLength": 36}]))
+    error("gltf_base_color_5_numbers", "gltf", "baseColorFactor has 5 elements, expected 4",
+          gltf=gltf_text(extra={"materials": [{"pbrMetallicRoughness": {
+              "baseColorFactor": [1, 1, 1, 1, 1]}}]}, primitive=tri_mat))
+    error("gltf_name_is_number", "gltf", "scenes[0].name is a number, expected a string",
+          gltf=gltf_text(extra={"scenes": [{"nodes": [0], "name": 42}]}))
+    two, bin_ = gltf_json(glb=True)
+    two["buffers"].append({"byteLength": len(bin_)})
+    error("glb_second_buffer_without_uri", "glb",
+          "buffers[1] has no uri: only the first buffer of a GLB may use its BIN chunk",
+          glb=glb_bytes(two, bin_))
+    textured = {"materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+                "textures": [{"source": 0}]}
+    for name, uri, message in [
+            ("gltf_image_outside", "../outside/secret.png", "lies outside the folder"),
+            ("gltf_image_absolute", "/etc/hostname", "lies outside the folder"),
+            ("gltf_image_encoded_dots", "%2E%2E/%2E%2E/etc/hostname", "lies outside the folder"),
+            ("gltf_image_http", "http://example.com/a.png", "is a URI with scheme 'http'")]:
+        error(name, "gltf", message,
+              gltf=gltf_text(extra=dict(textured, images=[{"uri": uri}]), primitive=tri_mat))
+    passwd, _ = gltf_json()
+    passwd["buffers"][0]["uri"] = "../" * 12 + "etc/passwd"
+    error("gltf_buffer_passwd", "gltf", "buffers[0].uri: '../../", gltf=json.dumps(passwd))
+    lights = {"extensionsUsed": ["KHR_lights_punctual"],
+              "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}]}}}
+    light_node = {"extensions": {"KHR_lights_punctual": {"light": 0}}}
+    levels = []
+    for i in range(12):
+        nxt = [1 + 2 * i + 2, 1 + 2 * i + 3]
+        levels += [{"children": nxt}, {"children": nxt}]
+    error("gltf_light_instances", "gltf", "more than 4096 light instances",
+          gltf=gltf_text(extra=lights, nodes=[{"mesh": 0, "children": [1, 2]}] + levels +
+                         [light_node, light_node]))
+    # EXT_meshopt_compression and KHR_draco_mesh_compression whose data lies.
+    meshopt, bin_ = gltf_json()
+    meshopt.update({"extensionsUsed": ["EXT_meshopt_compression"],
+                    "extensionsRequired": ["EXT_meshopt_compression"]})
+    meshopt["buffers"].append({"byteLength": 36,
+                               "extensions": {"EXT_meshopt_compression": {"fallback": True}}})
+    meshopt["bufferViews"] = [{"buffer": 1, "byteLength": 36, "byteStride": 12, "extensions": {
+        "EXT_meshopt_compression": {"buffer": 0, "byteLength": 36, "byteStride": 12,
+                                    "mode": "ATTRIBUTES", "count": 3}}}]
+    error("gltf_meshopt_garbage", "gltf", "the compressed data is malformed (meshoptimizer",
+          gltf=json.dumps(meshopt))
+    meshopt["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = 1 << 40
+    error("gltf_meshopt_huge_count", "gltf", "is too large", gltf=json.dumps(meshopt))
+    meshopt["bufferViews"][0]["extensions"]["EXT_meshopt_compression"].update(
+        {"count": 3, "byteOffset": 1 << 40})
+    error("gltf_meshopt_beyond_buffer", "gltf", "lie beyond buffer 0", gltf=json.dumps(meshopt))
+    draco, bin_ = gltf_json()
+    draco.update({"extensionsUsed": ["KHR_draco_mesh_compression"],
+                  "extensionsRequired": ["KHR_draco_mesh_compression"]})
+    draco["accessors"] = [{"componentType": 5126, "count": 3, "type": "VEC3"}]
+    draco["meshes"][0]["primitives"][0]["extensions"] = {"KHR_draco_mesh_compression": {
+        "bufferView": 0, "attributes": {"POSITION": 0}}}
+    error("gltf_draco_garbage", "gltf", "the compressed data is malformed (Draco",
+          gltf=json.dumps(draco))
 
 
 # ---- physically based materials and environments ------------------------------------------
@@ -817,6 +903,7 @@ def main():
     pbr()
     sizes()
     gltf()
+    gltf_assets()
 
 
 if __name__ == "__main__":

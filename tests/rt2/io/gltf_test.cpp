@@ -1,5 +1,5 @@
 // tests/rt2/io/gltf_test.cpp — glTF 2.0 loading (rt2/io/gltf_scene.h through rt2::load_scene):
-// small files written by the tests (GltfFile below builds their buffers and accessors), as
+// small files written by the tests (test::GltfFile builds their buffers and accessors), as
 // JSON with an embedded base64 buffer and as binary .glb; and every glTF file of Debian's
 // assimp-testmodels, each of which must load or fail with one rt2::Error line.
 #include <gtest/gtest.h>
@@ -14,91 +14,14 @@
 #include "rt2/base/error.h"
 #include "rt2/io/scene_io.h"
 #include "tests/rt2/error_of.h"
+#include "tests/rt2/io/gltf_file.h"
 #include "tests/rt2/temp_dir.h"
 
 namespace rt2 {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string base64(const std::string& bytes) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const auto a = std::uint8_t(bytes[i]), b = std::uint8_t(bytes[i + 1]),
-               c = std::uint8_t(bytes[i + 2]);
-    out += {k[a >> 2], k[((a & 3) << 4) | (b >> 4)], k[((b & 15) << 2) | (c >> 6)], k[c & 63]};
-  }
-  if (i + 1 == bytes.size()) {
-    const auto a = std::uint8_t(bytes[i]);
-    out += {k[a >> 2], k[(a & 3) << 4], '=', '='};
-  } else if (i + 2 == bytes.size()) {
-    const auto a = std::uint8_t(bytes[i]), b = std::uint8_t(bytes[i + 1]);
-    out += {k[a >> 2], k[((a & 3) << 4) | (b >> 4)], k[(b & 15) << 2], '='};
-  }
-  return out;
-}
-
-// A glTF file under construction: one buffer, a buffer view and an accessor per array.
-class GltfFile {
- public:
-  // Appends `values` (4-byte aligned) and returns the new accessor's index.
-  template <class T>
-  int accessor(const std::vector<T>& values, int component_type, const std::string& type,
-               std::size_t count, bool normalized = false) {
-    const std::size_t offset = bin_.size();
-    bin_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-    while (bin_.size() % 4) bin_ += '\0';
-    const int index = int(accessors_.size());
-    views_.push_back(R"({"buffer":0,"byteOffset":)" + std::to_string(offset) + R"(,"byteLength":)" +
-                     std::to_string(values.size() * sizeof(T)) + "}");
-    accessors_.push_back(R"({"bufferView":)" + std::to_string(index) + R"(,"componentType":)" +
-                         std::to_string(component_type) + R"(,"count":)" + std::to_string(count) +
-                         R"(,"type":")" + type + "\"" +
-                         (normalized ? R"(,"normalized":true)" : "") + "}");
-    return index;
-  }
-  int floats(const std::vector<float>& v, const std::string& type, std::size_t per) {
-    return accessor(v, 5126, type, v.size() / per);
-  }
-
-  // The JSON, with `rest` (more top-level members, starting with a comma; without "nodes",
-  // one node of mesh 0 is added) and the buffer as a data: URI (or, `glb`, without a URI:
-  // the GLB's binary chunk).
-  std::string json(std::string rest, bool glb = false) const {
-    if (rest.find("\"nodes\"") == std::string::npos)
-      rest += R"(,"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])";
-    std::string s =
-        R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":)" + std::to_string(bin_.size()) +
-        (glb ? "" : R"(,"uri":"data:application/octet-stream;base64,)" + base64(bin_) + "\"") +
-        R"(}],"bufferViews":[)";
-    for (std::size_t i = 0; i < views_.size(); ++i) s += (i ? "," : "") + views_[i];
-    s += R"(],"accessors":[)";
-    for (std::size_t i = 0; i < accessors_.size(); ++i) s += (i ? "," : "") + accessors_[i];
-    return s + "]" + rest + "}";
-  }
-
-  // The binary form: header, JSON chunk (space-padded), BIN chunk (zero-padded).
-  std::string glb(const std::string& rest) const {
-    std::string j = json(rest, true);
-    while (j.size() % 4) j += ' ';
-    std::string b = bin_;
-    while (b.size() % 4) b += '\0';
-    const auto u32 = [](std::size_t v) {
-      const auto x = std::uint32_t(v);
-      std::string s(4, '\0');
-      std::memcpy(s.data(), &x, 4);
-      return s;
-    };
-    return "glTF" + u32(2) + u32(12 + 8 + j.size() + 8 + b.size()) + u32(j.size()) + "JSON" + j +
-           u32(b.size()) + "BIN" + std::string(1, '\0') + b;
-  }
-
- private:
-  std::string bin_;
-  std::vector<std::string> views_, accessors_;
-};
+using test::GltfFile;
 
 // A triangle (0,0,0), (1,0,0), (0,1,0) with normals +z and texture coordinates.
 GltfFile triangle() {
