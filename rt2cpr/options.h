@@ -27,7 +27,6 @@ struct Interactive {
 struct Options {
   std::string scene;   // a .toml scene or an .obj; empty: the built-in scene
   std::string camera;  // --camera: a TOML file holding a [camera] table; empty: the scene's
-  rt2::AssetPolicy assets;
   std::string preset;  // low | middle | hard | veryhard, or empty
   rt2::RenderSettings render;
   int lights = -1;     // total light count; -1: the scene's own lights

@@ -7,7 +7,6 @@
 
 #include "rt2/scene/builtin_scene.h"
 #include "rt2/base/error.h"
-#include "rt2/io/framing.h"
 #include "rt2/io/scene_io.h"
 #include "rt2/io/text.h"
 #include "rt2cpr/clock.h"
@@ -21,7 +20,7 @@ rt2::Scene load_scene(const Options& o) {
     scene.camera = rt2::load_camera(o.camera);
     scene.framed_bounds.reset();
   }
-  rt2::io::fit_framed_camera(scene, o.render.width, o.render.height);
+  rt2::fit_framed_camera(scene, o.render.width, o.render.height);
   if (o.environment == "none") {
     scene.environment.reset();
   } else if (o.environment == "sky") {  // the scene's sun, intensity and rotation stay

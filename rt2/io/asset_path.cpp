@@ -1,7 +1,6 @@
 // rt2/io/asset_path.cpp — names an asset gives, resolved and confined (rt2/io/asset_path.h).
 #include "rt2/io/asset_path.h"
 
-#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <system_error>
@@ -28,17 +27,24 @@ std::string scheme(const std::string& name) {
   return name.substr(0, colon);
 }
 
-// Whether `p` is `folder` or lies below it (both absolute and normal).
-bool inside(const fs::path& folder, const fs::path& p) {
-  auto f = folder.begin(), q = p.begin();
-  for (; f != folder.end(); ++f, ++q) {
-    if (f->empty()) continue;  // the trailing "" of "dir/"
-    if (q == p.end() || *f != *q) return false;
-  }
-  return true;
+// `p` after `..` and symbolic links, absolute (lexically, where it cannot be resolved).
+fs::path resolved(const fs::path& p) {
+  std::error_code ec;
+  fs::path r = fs::weakly_canonical(p.empty() ? fs::path(".") : p, ec);
+  if (ec) r = fs::absolute(p, ec).lexically_normal();
+  if (r.has_relative_path() && r.filename().empty()) r = r.parent_path();  // "a/b/": "a/b"
+  return r;
 }
 
 }  // namespace
+
+bool lies_inside(const std::string& path, const std::string& folder) {
+  const fs::path p = resolved(path), f = resolved(folder);
+  auto q = p.begin();
+  for (auto it = f.begin(); it != f.end(); ++it, ++q)
+    if (q == p.end() || *q != *it) return false;
+  return true;
+}
 
 std::string asset_file(const std::string& asset, const std::string& name,
                        const AssetPolicy& policy, const std::string& where) {
@@ -48,14 +54,11 @@ std::string asset_file(const std::string& asset, const std::string& name,
   const fs::path folder = fs::path(asset).parent_path();
   const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : folder / name;
   if (policy.allow_outside_assets) return p.string();
-  std::error_code ec;
-  const fs::path real_folder = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, ec);
-  const fs::path real = ec ? fs::path() : fs::weakly_canonical(p, ec);
-  if (ec || !inside(real_folder, real))
+  if (!lies_inside(p.string(), folder.string()))
     throw Error(one_line(where + ": '" + name + "' lies outside the folder of " +
                          fs::path(asset).filename().string() +
-                         " (rt2cpr --allow-outside-assets reads it)"));
-  return real.string();
+                         " (--allow-outside-assets reads it)"));
+  return resolved(p).string();
 }
 
 }  // namespace rt2::io

@@ -11,6 +11,10 @@
 
 namespace rt2::io {
 
+// Whether `path`, after `..` and symbolic links, lies in `folder` (resolved the same way),
+// compared component by component (so /a/bc is not in /a/b).
+bool lies_inside(const std::string& path, const std::string& folder);
+
 // The path of the file `name` that the asset file `asset` refers to. Throws rt2::Error
 // "`where`: '<name>' ..." when `name` has a URI scheme, or resolves outside the asset's
 // folder and `policy` does not allow that. The file itself is not opened.

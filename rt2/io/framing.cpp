@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rt2/base/error.h"
+#include "rt2/io/scene_io.h"
 #include "rt2/io/text.h"
 
 namespace rt2::io {
@@ -33,12 +34,6 @@ Framing framing_of(const std::string& file, const Aabb& box, const std::string& 
              "the " + what + " is too " + std::string(f.radius > 1.0f ? "large" : "small") +
                  " to frame (half diagonal " + fmt(f.radius) + ")");
   return f;
-}
-
-Camera framing_camera(const Framing& f) {
-  const float r = f.radius;
-  return Camera::look_at(f.center + vec4(0.0f, 0.3f * r, 2.2f * r), f.center,
-                         vec4(0.0f, 1.0f, 0.0f), 45.0f);
 }
 
 vec4 framing_direction(const Framing& f) {
@@ -73,14 +68,6 @@ void frame_camera(Scene& scene, const Framing& f) {
   scene.framed_bounds = f.box;
 }
 
-void fit_framed_camera(Scene& scene, int width, int height) {
-  if (!scene.framed_bounds) return;
-  if (width <= 0 || height <= 0)
-    throw Error("framing: the image must be at least 1 x 1, got " + std::to_string(width) +
-                " x " + std::to_string(height));
-  scene.camera = framing_camera(framing(*scene.framed_bounds), float(width) / float(height));
-}
-
 Light framing_light(const Framing& f) {
   const vec4 d = framing_direction(f);
   const vec4 up(0.0f, 1.0f, 0.0f);
@@ -92,3 +79,17 @@ Light framing_light(const Framing& f) {
 }
 
 }  // namespace rt2::io
+
+namespace rt2 {
+
+// Declared in rt2/io/scene_io.h, the public face of framing.
+void fit_framed_camera(Scene& scene, int width, int height) {
+  if (!scene.framed_bounds) return;
+  if (width <= 0 || height <= 0)
+    throw Error("framing: the image must be at least 1 x 1, got " + std::to_string(width) +
+                " x " + std::to_string(height));
+  scene.camera =
+      io::framing_camera(io::framing(*scene.framed_bounds), float(width) / float(height));
+}
+
+}  // namespace rt2

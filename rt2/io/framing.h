@@ -34,10 +34,6 @@ inline constexpr float kFramingAspect = 4.0f / 3.0f;
 // when R is not in [1e-15, 1e15] (or the box is empty).
 Framing framing_of(const std::string& file, const Aabb& box, const std::string& what);
 
-// Looks at the centre from the front (+z), slightly above, 2.2 R away at 45°: the camera of
-// a glTF scene without one (rt2/io/gltf_scene.cpp).
-Camera framing_camera(const Framing& f);
-
 // The unit direction from the centre towards a framed camera, every component > 0 (above,
 // in front along +z, to the right along +x): (1, 1, 2) normalised for a box whose extents
 // are alike, turning towards (2, 1, 1), (1, 2, 1) or (1, 1, 2) along the axis of its
@@ -52,12 +48,9 @@ vec4 framing_direction(const Framing& f);
 Camera framing_camera(const Framing& f, float aspect);
 
 // Gives `scene` framing_camera(f, kFramingAspect) and records f's box in
-// Scene::framed_bounds, so that fit_framed_camera can fit it to an image.
+// Scene::framed_bounds, so that rt2::fit_framed_camera (rt2/io/scene_io.h) can fit it to an
+// image.
 void frame_camera(Scene& scene, const Framing& f);
-
-// A scene with framed_bounds gets framing_camera for a width x height image (both > 0); any
-// other scene is left as it is.
-void fit_framed_camera(Scene& scene, int width, int height);
 
 // A white light above the camera's side: from the centre, 3 R up, 2 R along
 // framing_direction and R to the right of a camera there.

@@ -1029,7 +1029,7 @@ Scene GltfReader::read() {
              ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"
              : "no triangles in the scene");
   const Framing frame = framing_of(path_, scene_.bounds(), "scene");
-  if (!have_camera_) scene_.camera = framing_camera(frame);
+  if (!have_camera_) frame_camera(scene_, frame);
   finish_lights();
   if (scene_.lights.empty()) scene_.lights.push_back(framing_light(frame));
   validate(path_, scene_);

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "rt2/base/error.h"
+#include "rt2/io/asset_path.h"
 #include "rt2/io/mtl.h"
 #include "rt2/io/polygon_triangulation.h"
 #include "rt2/io/text.h"
@@ -273,28 +274,9 @@ fs::path find_ignoring_case(const fs::path& path) {
   return at;
 }
 
-// `path` after `..` and symbolic links (std::filesystem::weakly_canonical), absolute.
-fs::path canonical_path(const fs::path& path) {
-  std::error_code ec;
-  fs::path c = fs::weakly_canonical(path.empty() ? fs::path(".") : path, ec);
-  if (ec) c = fs::absolute(path, ec).lexically_normal();
-  if (c.has_relative_path() && c.filename().empty()) c = c.parent_path();  // "a/b/": "a/b"
-  return c;
-}
-
-// Whether `path`, after `..` and symbolic links, lies in `folder` (canonical_path), compared
-// component by component (so /a/bc is not in /a/b).
-bool lies_in(const fs::path& path, const fs::path& folder) {
-  const fs::path p = canonical_path(path);
-  auto q = p.begin();
-  for (auto f = folder.begin(); f != folder.end(); ++f, ++q)
-    if (q == p.end() || *q != *f) return false;
-  return true;
-}
-
 // The file an OBJ (mtllib) or an MTL (a texture statement) names: `written`, relative to
 // `folder` (the naming file's), as portable_path and find_ignoring_case find it. With a
-// `root` (the canonical folder of the OBJ; none when the scene's AssetPolicy allows outside
+// `root` (the folder of the OBJ; none when the scene's AssetPolicy allows outside
 // assets), a file that is regular or missing must lie in `root`, or this throws
 // "`where`: `key` 'written' lies outside the asset's folder (--allow-outside-assets reads it)".
 // A device, pipe or folder is the caller's to refuse: it is never read.
@@ -306,7 +288,7 @@ fs::path resolve_asset(const fs::path& folder, std::string_view written,
     std::error_code ec;
     const fs::file_type type = fs::status(p, ec).type();
     if (type != fs::file_type::regular && type != fs::file_type::not_found) return;
-    if (!lies_in(p, *root))
+    if (!lies_inside(p.string(), root->string()))
       throw Error(one_line(where + ": " + std::string(key) + " '" + std::string(written) +
                            "' lies outside the asset's folder (--allow-outside-assets reads it)"));
   };
@@ -321,7 +303,8 @@ fs::path resolve_asset(const fs::path& folder, std::string_view written,
 // allows outside assets.
 std::optional<fs::path> asset_root(const std::string& obj_path, const AssetPolicy& policy) {
   if (policy.allow_outside_assets) return std::nullopt;
-  return canonical_path(fs::path(obj_path).parent_path());
+  const fs::path folder = fs::path(obj_path).parent_path();
+  return folder.empty() ? fs::path(".") : folder;
 }
 
 // ---- MTL libraries and face materials ---------------------------------------------------

@@ -43,6 +43,11 @@ Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy = {});
 // box's diagonal), MTL materials or a default grey material.
 Scene frame_obj(const std::string& obj_path, const AssetPolicy& policy = {});
 
+// A framed scene (a bare OBJ, a glTF without a camera: Scene::framed_bounds) gets the camera
+// that shows its whole bounding sphere in a width x height image (both > 0); any other
+// scene is left as it is.
+void fit_framed_camera(Scene& scene, int width, int height);
+
 // Reads an OBJ (and its MTL libraries) through tinyobjloader into a Mesh. Each face's material
 // is `override_material` when >= 0, else the MTL material (added to `scene`; name
 // "<objfile>:<mtlname>"), else a default material (added once, name "default"). Degenerate

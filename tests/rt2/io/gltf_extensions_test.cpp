@@ -18,7 +18,9 @@
 #include <vector>
 
 #include "rt2/base/error.h"
+#include "rt2/image/image_compare.h"
 #include "rt2/io/scene_io.h"
+#include "tests/rt2/test_util.h"
 #include "tests/rt2/error_of.h"
 #include "tests/rt2/io/gltf_file.h"
 #include "tests/rt2/temp_dir.h"
@@ -472,6 +474,33 @@ TEST(GltfConfinement, FilesOutsideTheAssetsFolderAreRefusedUnlessAllowed) {
   const std::string bad_buffer = dir.write("asset/buffer.gltf", json);
   EXPECT_NE(test::error_of([&] { load_scene(bad_buffer); }).find("buffers[0].uri: '../../"),
             std::string::npos);
+}
+
+// Compressed and quantized files render as their uncompressed originals: PSNR >= 30 dB at
+// 160 x 120, for the files encoded here and for those the tools wrote (tests/hostile/tools_*).
+TEST(GltfRender, CompressedFilesRenderAsTheirOriginals) {
+  const test::TempDir dir("gltfr");
+  RenderSettings st;
+  st.width = 160;
+  st.height = 120;
+  st.depth = 2;
+  const auto render = [&](const std::string& path) {
+    Scene s = load_scene(path);
+    fit_framed_camera(s, st.width, st.height);
+    return test::render_scene(s, st);
+  };
+  const auto expect_close = [&](const Image& image, const Image& reference, const std::string& what) {
+    const ImageError e = compare_images(image, reference);
+    std::printf("[ measure  ] %s: PSNR %.1f dB\n", what.c_str(), e.psnr);
+    EXPECT_GE(e.psnr, 30.0) << what;
+  };
+  const Image plain = render(dir.write("plain.gltf", plain_octahedron()));
+  expect_close(render(dir.write("m.glb", meshopt_octahedron(true))), plain, "meshopt");
+  expect_close(render(dir.write("d.gltf", draco_octahedron())), plain, "Draco");
+  const std::string hostile = std::string(RT2_SOURCE_DIR) + "/tests/hostile/";
+  const Image tetra = render(hostile + "tools_obj2gltf.glb");
+  for (const char* f : {"tools_gltfpack.glb", "tools_gltfpack_meshopt.glb", "tools_gltf_pipeline_draco.glb"})
+    expect_close(render(hostile + f), tetra, f);
 }
 
 }  // namespace

@@ -224,9 +224,13 @@ TEST(Gltf, CameraComesFromItsNode) {
 TEST(Gltf, SceneWithoutCameraOrLightsIsFramed) {
   const test::TempDir dir("gltf");
   const Scene scene = load_scene(dir.write("framed.gltf", triangle().json(kTriangleMesh)));
-  // In front of the triangle (+z), looking at its centre.
+  // In front of the triangle (+z) and above it, looking at its centre, and fitted to the
+  // image later (framed_bounds), as a bare OBJ.
   EXPECT_GT(scene.camera.position()[2], 1.0f);
-  EXPECT_LT(scene.camera.forward()[2], -0.9f);
+  EXPECT_GT(scene.camera.position()[1], 0.5f);
+  const vec4 to_centre = normalize(vec4(0.5f, 0.5f, 0.0f) - scene.camera.position());
+  EXPECT_GT(float(dot(to_centre, scene.camera.forward())), 0.9999f);
+  EXPECT_TRUE(scene.framed_bounds.has_value());
   ASSERT_EQ(scene.lights.size(), 1u);
   EXPECT_GT(scene.lights[0].position[1], 1.0f);
 }
