@@ -46,8 +46,8 @@ bool lies_inside(const std::string& path, const std::string& folder) {
   return true;
 }
 
-std::string asset_file(const std::string& asset, const std::string& name,
-                       const AssetPolicy& policy, const std::string& where) {
+std::string asset_file(const std::string& asset, const std::string& name, const AssetPolicy& policy,
+                       const std::string& where) {
   if (const std::string s = scheme(name); !s.empty())
     throw Error(one_line(where + ": '" + name + "' is a URI with scheme '" + s +
                          "'; rt2 reads files beside the asset and data: URIs only"));

@@ -55,11 +55,13 @@ class Decoder {
     if (b < 0 || std::size_t(b) >= model_.buffers.size())
       fail(at + ": buffer " + std::to_string(b) + " does not exist (" +
            std::to_string(model_.buffers.size()) + " buffers)");
-    if (is_fallback(b)) fail(at + ": reads buffer " + std::to_string(b) + ", a fallback buffer with no data");
+    if (is_fallback(b))
+      fail(at + ": reads buffer " + std::to_string(b) + ", a fallback buffer with no data");
     const std::vector<unsigned char>& data = model_.buffers[std::size_t(b)].data;
     if (offset > data.size() || length > data.size() - offset)
       fail(at + ": bytes " + std::to_string(offset) + " + " + std::to_string(length) +
-           " lie beyond buffer " + std::to_string(b) + " of " + std::to_string(data.size()) + " bytes");
+           " lie beyond buffer " + std::to_string(b) + " of " + std::to_string(data.size()) +
+           " bytes");
     return {reinterpret_cast<const char*>(data.data()) + offset, length};
   }
 
@@ -96,11 +98,13 @@ class Decoder {
       fail(at + ": byteStride " + std::to_string(stride) + " does not suit mode " + mode);
     if (mode == "TRIANGLES" && count % 3 != 0)
       fail(at + ": count " + std::to_string(count) + " is not a multiple of 3 for TRIANGLES");
-    if (filter != "NONE" && mode != "ATTRIBUTES") fail(at + ": filter " + filter + " needs mode ATTRIBUTES");
+    if (filter != "NONE" && mode != "ATTRIBUTES")
+      fail(at + ": filter " + filter + " needs mode ATTRIBUTES");
     if ((filter == "OCTAHEDRAL" && stride != 4 && stride != 8) ||
         (filter == "QUATERNION" && stride != 8))
       fail(at + ": byteStride " + std::to_string(stride) + " does not suit filter " + filter);
-    if (count > kMaxDecodedBytes / stride) fail(at + ": count " + std::to_string(count) + " is too large");
+    if (count > kMaxDecodedBytes / stride)
+      fail(at + ": count " + std::to_string(count) + " is too large");
     spend(count * stride, at);
     const std::string_view src = buffer_bytes(m.buffer, m.offset, m.length, at);
     const auto* in = reinterpret_cast<const unsigned char*>(src.data());
@@ -112,7 +116,9 @@ class Decoder {
       status = meshopt_decodeIndexBuffer(out.data(), count, stride, in, src.size());
     else
       status = meshopt_decodeIndexSequence(out.data(), count, stride, in, src.size());
-    if (status != 0) fail(at + ": the compressed data is malformed (meshoptimizer: " + std::to_string(status) + ")");
+    if (status != 0)
+      fail(at + ": the compressed data is malformed (meshoptimizer: " + std::to_string(status) +
+           ")");
     if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), count, stride);
     if (filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), count, stride);
     if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), count, stride);
@@ -139,7 +145,9 @@ class Decoder {
     buffer.Init(bytes.data(), bytes.size());
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-    if (!decoded.ok()) fail(at + ": the compressed data is malformed (Draco: " + one_line(decoded.status().error_msg_string()) + ")");
+    if (!decoded.ok())
+      fail(at + ": the compressed data is malformed (Draco: " +
+           one_line(decoded.status().error_msg_string()) + ")");
     const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
     const std::size_t points = mesh->num_points(), faces = mesh->num_faces();
 
@@ -153,16 +161,19 @@ class Decoder {
       const draco::PointAttribute* att = mesh->GetAttributeByUniqueId(id);
       if (!att) fail(a_at + ": Draco attribute " + std::to_string(id) + " does not exist");
       const int components = tinygltf::GetNumComponentsInType(std::uint32_t(acc.type));
-      if (components < 1 || components > 4) fail(a_at + ": accessor " + std::to_string(a->second) + " is not a vector");
+      if (components < 1 || components > 4)
+        fail(a_at + ": accessor " + std::to_string(a->second) + " is not a vector");
       if (acc.count != points)
-        fail(a_at + ": accessor " + std::to_string(a->second) + " declares " + std::to_string(acc.count) +
-             " elements, the Draco data holds " + std::to_string(points));
+        fail(a_at + ": accessor " + std::to_string(a->second) + " declares " +
+             std::to_string(acc.count) + " elements, the Draco data holds " +
+             std::to_string(points));
       spend(points * std::size_t(components) * 4, a_at);
       std::vector<unsigned char> out(points * std::size_t(components) * 4);
       auto* values = reinterpret_cast<float*>(out.data());
       for (std::size_t i = 0; i < points; ++i)
         if (!att->ConvertValue<float>(att->mapped_index(draco::PointIndex(std::uint32_t(i))),
-                                      std::int8_t(components), values + i * std::size_t(components)))
+                                      std::int8_t(components),
+                                      values + i * std::size_t(components)))
           fail(a_at + ": Draco cannot convert point " + std::to_string(i));
       acc.bufferView = add_view(std::move(out), 0);
       acc.byteOffset = 0;
@@ -173,13 +184,14 @@ class Decoder {
     if (d.indices >= 0 && std::size_t(d.indices) < model_.accessors.size() &&
         model_.accessors[std::size_t(d.indices)].count != faces * 3)
       fail(at + ": accessor " + std::to_string(d.indices) + " declares " +
-           std::to_string(model_.accessors[std::size_t(d.indices)].count) + " indices, the Draco data holds " +
-           std::to_string(faces * 3));
+           std::to_string(model_.accessors[std::size_t(d.indices)].count) +
+           " indices, the Draco data holds " + std::to_string(faces * 3));
     spend(faces * 12, at);
     std::vector<unsigned char> out(faces * 12);
     auto* idx = reinterpret_cast<std::uint32_t*>(out.data());
     for (std::size_t f = 0; f < faces; ++f)
-      for (int k = 0; k < 3; ++k) idx[3 * f + std::size_t(k)] = mesh->face(draco::FaceIndex(std::uint32_t(f)))[k].value();
+      for (int k = 0; k < 3; ++k)
+        idx[3 * f + std::size_t(k)] = mesh->face(draco::FaceIndex(std::uint32_t(f)))[k].value();
     tinygltf::Accessor indices;
     indices.bufferView = add_view(std::move(out), 0);
     indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;

@@ -24,9 +24,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
-constexpr std::uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
+constexpr std::uint32_t kGlbMagic = 0x46546C67;                               // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;                              // "JSON"
+constexpr std::uint32_t kChunkBin = 0x004E4942;                               // "BIN\0"
 constexpr std::int64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();  // tinygltf's int
 constexpr std::int64_t kMaxBytes = std::int64_t(1) << 53;  // exact in a JSON number
 
@@ -71,7 +71,10 @@ void check_json_shape(const std::string& path, std::string_view text) {
       continue;
     }
     switch (c) {
-      case '"': in_string = true; ++values; break;
+      case '"':
+        in_string = true;
+        ++values;
+        break;
       case '[':
       case '{':
         ++values;
@@ -81,9 +84,14 @@ void check_json_shape(const std::string& path, std::string_view text) {
                        " deep (at byte " + std::to_string(i) + ")");
         break;
       case ']':
-      case '}': --depth; break;
-      case ',': ++values; break;
-      default: break;
+      case '}':
+        --depth;
+        break;
+      case ',':
+        ++values;
+        break;
+      default:
+        break;
     }
     if (values > kMaxJsonValues)
       error_at(path, 0, 0, "JSON holds more than " + std::to_string(kMaxJsonValues) + " values");
@@ -93,12 +101,18 @@ void check_json_shape(const std::string& path, std::string_view text) {
 // What a JSON value is, for messages.
 const char* kind(const json& v) {
   switch (v.type()) {
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array";
-    case json::value_t::string: return "a string";
-    case json::value_t::boolean: return "true or false";
-    case json::value_t::null: return "null";
-    default: return "a number";
+    case json::value_t::object:
+      return "an object";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::boolean:
+      return "true or false";
+    case json::value_t::null:
+      return "null";
+    default:
+      return "a number";
   }
 }
 
@@ -128,15 +142,15 @@ class Schema {
                     std::size_t hi = std::size_t(-1)) const {
     if (!v.is_array()) fail(at, std::string("is ") + kind(v) + ", expected an array");
     if (v.size() < lo || v.size() > hi)
-      fail(at, "has " + std::to_string(v.size()) + " elements, expected " +
-                   (lo == hi ? std::to_string(lo)
-                             : std::to_string(lo) + (hi == std::size_t(-1)
-                                                          ? " or more"
-                                                          : " to " + std::to_string(hi))));
+      fail(at,
+           "has " + std::to_string(v.size()) + " elements, expected " +
+               (lo == hi ? std::to_string(lo)
+                         : std::to_string(lo) +
+                               (hi == std::size_t(-1) ? " or more" : " to " + std::to_string(hi))));
     return v;
   }
-  double number(const json& v, const std::string& at, double lo = -HUGE_VAL,
-                double hi = HUGE_VAL, bool open_lo = false) const {
+  double number(const json& v, const std::string& at, double lo = -HUGE_VAL, double hi = HUGE_VAL,
+                bool open_lo = false) const {
     if (!v.is_number()) fail(at, std::string("is ") + kind(v) + ", expected a number");
     const double x = v.get<double>();
     if (!std::isfinite(x)) fail(at, "is not a finite number");
@@ -152,7 +166,7 @@ class Schema {
                    ", expected an integer");
     if (x < double(lo) || x > double(hi))
       fail(at, "is " + fmt(x) + ", expected " + range(double(lo), double(hi), false));
-    return v.is_number_unsigned() ? std::int64_t(v.get<std::uint64_t>())
+    return v.is_number_unsigned()  ? std::int64_t(v.get<std::uint64_t>())
            : v.is_number_integer() ? v.get<std::int64_t>()
                                    : std::int64_t(x);
   }
@@ -185,7 +199,8 @@ class Schema {
   void numbers(const json& v, const std::string& at, std::size_t lo, std::size_t hi,
                double min = -HUGE_VAL, double max = HUGE_VAL) const {
     array(v, at, lo, hi);
-    for (std::size_t i = 0; i < v.size(); ++i) number(v[i], at + "[" + std::to_string(i) + "]", min, max);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      number(v[i], at + "[" + std::to_string(i) + "]", min, max);
   }
   void indices(const json& v, const std::string& at, std::size_t lo = 0) const {
     array(v, at, lo);
@@ -242,9 +257,11 @@ void check_texture_info(const Schema& s, const json& t, const std::string& at) {
   s.optional(t, "strength", at, [&](const json& v, const std::string& p) { s.number(v, p, 0, 1); });
   if (const json* x = s.extension(t, "KHR_texture_transform", at)) {
     const std::string x_at = at + ".extensions.KHR_texture_transform";
-    s.optional(*x, "offset", x_at, [&](const json& v, const std::string& p) { s.numbers(v, p, 2, 2); });
+    s.optional(*x, "offset", x_at,
+               [&](const json& v, const std::string& p) { s.numbers(v, p, 2, 2); });
     s.optional(*x, "rotation", x_at, [&](const json& v, const std::string& p) { s.number(v, p); });
-    s.optional(*x, "scale", x_at, [&](const json& v, const std::string& p) { s.numbers(v, p, 2, 2); });
+    s.optional(*x, "scale", x_at,
+               [&](const json& v, const std::string& p) { s.numbers(v, p, 2, 2); });
     s.optional(*x, "texCoord", x_at, [&](const json& v, const std::string& p) { s.integer(v, p); });
   }
 }
@@ -254,17 +271,23 @@ void check_material(const Schema& s, const json& m, const std::string& at) {
   s.optional(m, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
   s.optional(m, "pbrMetallicRoughness", at, [&](const json& pbr, const std::string& p) {
     s.object(pbr, p);
-    s.optional(pbr, "baseColorFactor", p, [&](const json& v, const std::string& q) { s.numbers(v, q, 4, 4, 0, 1); });
-    s.optional(pbr, "metallicFactor", p, [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
-    s.optional(pbr, "roughnessFactor", p, [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
+    s.optional(pbr, "baseColorFactor", p,
+               [&](const json& v, const std::string& q) { s.numbers(v, q, 4, 4, 0, 1); });
+    s.optional(pbr, "metallicFactor", p,
+               [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
+    s.optional(pbr, "roughnessFactor", p,
+               [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
     s.optional(pbr, "baseColorTexture", p, tex);
     s.optional(pbr, "metallicRoughnessTexture", p, tex);
   });
   s.optional(m, "normalTexture", at, tex);
   s.optional(m, "occlusionTexture", at, tex);
   s.optional(m, "emissiveTexture", at, tex);
-  s.optional(m, "emissiveFactor", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3, 0, 1); });
-  s.optional(m, "alphaMode", at, [&](const json& v, const std::string& p) { s.one_of(v, p, {"OPAQUE", "MASK", "BLEND"}); });
+  s.optional(m, "emissiveFactor", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3, 0, 1); });
+  s.optional(m, "alphaMode", at, [&](const json& v, const std::string& p) {
+    s.one_of(v, p, {"OPAQUE", "MASK", "BLEND"});
+  });
   s.optional(m, "alphaCutoff", at, [&](const json& v, const std::string& p) { s.number(v, p, 0); });
   s.optional(m, "doubleSided", at, [&](const json& v, const std::string& p) { s.boolean(v, p); });
   const std::string x_at = at + ".extensions.";
@@ -276,14 +299,18 @@ void check_material(const Schema& s, const json& m, const std::string& at) {
                [&](const json& v, const std::string& p) { s.number(v, p, 0); });
   if (const json* x = s.extension(m, "KHR_materials_transmission", at)) {
     const std::string p = x_at + "KHR_materials_transmission";
-    s.optional(*x, "transmissionFactor", p, [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
+    s.optional(*x, "transmissionFactor", p,
+               [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
     s.optional(*x, "transmissionTexture", p, tex);
   }
   if (const json* x = s.extension(m, "KHR_materials_pbrSpecularGlossiness", at)) {
     const std::string p = x_at + "KHR_materials_pbrSpecularGlossiness";
-    s.optional(*x, "diffuseFactor", p, [&](const json& v, const std::string& q) { s.numbers(v, q, 4, 4, 0, 1); });
-    s.optional(*x, "specularFactor", p, [&](const json& v, const std::string& q) { s.numbers(v, q, 3, 3, 0, 1); });
-    s.optional(*x, "glossinessFactor", p, [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
+    s.optional(*x, "diffuseFactor", p,
+               [&](const json& v, const std::string& q) { s.numbers(v, q, 4, 4, 0, 1); });
+    s.optional(*x, "specularFactor", p,
+               [&](const json& v, const std::string& q) { s.numbers(v, q, 3, 3, 0, 1); });
+    s.optional(*x, "glossinessFactor", p,
+               [&](const json& v, const std::string& q) { s.number(v, q, 0, 1); });
     s.optional(*x, "diffuseTexture", p, tex);
     s.optional(*x, "specularGlossinessTexture", p, tex);
   }
@@ -291,7 +318,8 @@ void check_material(const Schema& s, const json& m, const std::string& at) {
 
 void check_accessor(const Schema& s, const json& a, const std::string& at) {
   s.optional(a, "bufferView", at, [&](const json& v, const std::string& p) { s.integer(v, p); });
-  s.optional(a, "byteOffset", at, [&](const json& v, const std::string& p) { s.integer(v, p, 0, kMaxBytes); });
+  s.optional(a, "byteOffset", at,
+             [&](const json& v, const std::string& p) { s.integer(v, p, 0, kMaxBytes); });
   s.one_of(s.required(a, "componentType", at), at + ".componentType",
            {5120, 5121, 5122, 5123, 5125, 5126});
   s.optional(a, "normalized", at, [&](const json& v, const std::string& p) { s.boolean(v, p); });
@@ -308,17 +336,21 @@ void check_accessor(const Schema& s, const json& a, const std::string& at) {
 
 void check_buffer_view(const Schema& s, const json& v, const std::string& at) {
   s.integer(s.required(v, "buffer", at), at + ".buffer");
-  s.optional(v, "byteOffset", at, [&](const json& x, const std::string& p) { s.integer(x, p, 0, kMaxBytes); });
+  s.optional(v, "byteOffset", at,
+             [&](const json& x, const std::string& p) { s.integer(x, p, 0, kMaxBytes); });
   s.integer(s.required(v, "byteLength", at), at + ".byteLength", 1, kMaxBytes);
   s.optional(v, "byteStride", at, [&](const json& x, const std::string& p) {
     if (s.integer(x, p, 4, 252) % 4 != 0)
       s.fail(p, "is " + std::to_string(s.integer(x, p)) + ", expected a multiple of 4");
   });
-  s.optional(v, "target", at, [&](const json& x, const std::string& p) { s.one_of(x, p, {34962, 34963}); });
+  s.optional(v, "target", at, [&](const json& x, const std::string& p) {
+    s.one_of(x, p, {34962, 34963});
+  });
   if (const json* m = s.extension(v, "EXT_meshopt_compression", at)) {
     const std::string p = at + ".extensions.EXT_meshopt_compression";
     s.integer(s.required(*m, "buffer", p), p + ".buffer");
-    s.optional(*m, "byteOffset", p, [&](const json& x, const std::string& q) { s.integer(x, q, 0, kMaxBytes); });
+    s.optional(*m, "byteOffset", p,
+               [&](const json& x, const std::string& q) { s.integer(x, q, 0, kMaxBytes); });
     s.integer(s.required(*m, "byteLength", p), p + ".byteLength", 1, kMaxBytes);
     s.integer(s.required(*m, "byteStride", p), p + ".byteStride", 1, 256);
     s.integer(s.required(*m, "count", p), p + ".count", 1, kMaxBytes);
@@ -338,7 +370,8 @@ void check_mesh(const Schema& s, const json& m, const std::string& at) {
       s.integer(index, p + ".attributes." + one_line(name));
     s.optional(prim, "indices", p, [&](const json& v, const std::string& q) { s.integer(v, q); });
     s.optional(prim, "material", p, [&](const json& v, const std::string& q) { s.integer(v, q); });
-    s.optional(prim, "mode", p, [&](const json& v, const std::string& q) { s.integer(v, q, 0, 6); });
+    s.optional(prim, "mode", p,
+               [&](const json& v, const std::string& q) { s.integer(v, q, 0, 6); });
     s.each_object(prim, "targets", p, [&](const json& t, const std::string& q) {
       for (const auto& [name, index] : t.items()) s.integer(index, q + "." + one_line(name));
     });
@@ -350,7 +383,8 @@ void check_mesh(const Schema& s, const json& m, const std::string& at) {
         s.integer(id, q + ".attributes." + one_line(name));
     }
   });
-  s.optional(m, "weights", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 0, std::size_t(-1)); });
+  s.optional(m, "weights", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 0, std::size_t(-1)); });
 }
 
 void check_node(const Schema& s, const json& n, const std::string& at) {
@@ -360,11 +394,15 @@ void check_node(const Schema& s, const json& n, const std::string& at) {
   s.optional(n, "mesh", at, index);
   s.optional(n, "skin", at, index);
   s.optional(n, "children", at, [&](const json& v, const std::string& p) { s.indices(v, p); });
-  s.optional(n, "matrix", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 16, 16); });
-  s.optional(n, "rotation", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 4, 4, -1, 1); });
+  s.optional(n, "matrix", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 16, 16); });
+  s.optional(n, "rotation", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 4, 4, -1, 1); });
   s.optional(n, "scale", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3); });
-  s.optional(n, "translation", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3); });
-  s.optional(n, "weights", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 0, std::size_t(-1)); });
+  s.optional(n, "translation", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3); });
+  s.optional(n, "weights", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 0, std::size_t(-1)); });
   if (const json* l = s.extension(n, "KHR_lights_punctual", at))
     s.integer(s.required(*l, "light", at + ".extensions.KHR_lights_punctual"),
               at + ".extensions.KHR_lights_punctual.light");
@@ -376,7 +414,9 @@ void check_camera(const Schema& s, const json& c, const std::string& at) {
       s.one_of(s.required(c, "type", at), at + ".type", {"perspective", "orthographic"});
   const std::string p = at + "." + type;
   const json& o = s.object(s.required(c, type.c_str(), at), p);
-  const auto positive = [&](const json& v, const std::string& q) { s.number(v, q, 0, HUGE_VAL, true); };
+  const auto positive = [&](const json& v, const std::string& q) {
+    s.number(v, q, 0, HUGE_VAL, true);
+  };
   if (type == "perspective") {
     s.number(s.required(o, "yfov", p), p + ".yfov", 0, HUGE_VAL, true);
     s.number(s.required(o, "znear", p), p + ".znear", 0, HUGE_VAL, true);
@@ -394,13 +434,17 @@ void check_light(const Schema& s, const json& l, const std::string& at) {
   s.optional(l, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
   const std::string& type =
       s.one_of(s.required(l, "type", at), at + ".type", {"directional", "point", "spot"});
-  s.optional(l, "color", at, [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3, 0, 1); });
+  s.optional(l, "color", at,
+             [&](const json& v, const std::string& p) { s.numbers(v, p, 3, 3, 0, 1); });
   s.optional(l, "intensity", at, [&](const json& v, const std::string& p) { s.number(v, p, 0); });
-  s.optional(l, "range", at, [&](const json& v, const std::string& p) { s.number(v, p, 0, HUGE_VAL, true); });
+  s.optional(l, "range", at,
+             [&](const json& v, const std::string& p) { s.number(v, p, 0, HUGE_VAL, true); });
   if (type == "spot") {
     const json& spot = s.object(s.required(l, "spot", at), at + ".spot");
-    s.optional(spot, "innerConeAngle", at + ".spot", [&](const json& v, const std::string& p) { s.number(v, p, 0, M_PI / 2); });
-    s.optional(spot, "outerConeAngle", at + ".spot", [&](const json& v, const std::string& p) { s.number(v, p, 0, M_PI / 2, true); });
+    s.optional(spot, "innerConeAngle", at + ".spot",
+               [&](const json& v, const std::string& p) { s.number(v, p, 0, M_PI / 2); });
+    s.optional(spot, "outerConeAngle", at + ".spot",
+               [&](const json& v, const std::string& p) { s.number(v, p, 0, M_PI / 2, true); });
   }
 }
 
@@ -447,8 +491,9 @@ void check_asset_and_extensions(const std::string& path, const Schema& s, const 
   for (const std::string& name : names("extensionsRequired"))
     if (!known(name))
       error_at(path, 0, 0,
-               "requires extension " + one_line(name) + " (extensionsRequired), which rt2 does not "
-               "implement");
+               "requires extension " + one_line(name) +
+                   " (extensionsRequired), which rt2 does not "
+                   "implement");
   for (const std::string& name : names("extensionsUsed")) {
     if (known(name)) continue;
     const auto it = std::find_if(std::begin(kIgnoredExtensions), std::end(kIgnoredExtensions),
@@ -466,10 +511,14 @@ void check_schema(const Schema& s, const json& root, bool glb, std::vector<std::
     s.optional(sc, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
     s.optional(sc, "nodes", at, [&](const json& v, const std::string& p) { s.indices(v, p); });
   });
-  s.each_object(root, "nodes", "", [&](const json& n, const std::string& at) { check_node(s, n, at); });
-  s.each_object(root, "meshes", "", [&](const json& m, const std::string& at) { check_mesh(s, m, at); });
-  s.each_object(root, "accessors", "", [&](const json& a, const std::string& at) { check_accessor(s, a, at); });
-  s.each_object(root, "bufferViews", "", [&](const json& v, const std::string& at) { check_buffer_view(s, v, at); });
+  s.each_object(root, "nodes", "",
+                [&](const json& n, const std::string& at) { check_node(s, n, at); });
+  s.each_object(root, "meshes", "",
+                [&](const json& m, const std::string& at) { check_mesh(s, m, at); });
+  s.each_object(root, "accessors", "",
+                [&](const json& a, const std::string& at) { check_accessor(s, a, at); });
+  s.each_object(root, "bufferViews", "",
+                [&](const json& v, const std::string& at) { check_buffer_view(s, v, at); });
   std::size_t index = 0;
   s.each_object(root, "buffers", "", [&](const json& b, const std::string& at) {
     s.integer(s.required(b, "byteLength", at), at + ".byteLength", 1, kMaxBytes);
@@ -482,7 +531,8 @@ void check_schema(const Schema& s, const json& root, bool glb, std::vector<std::
                  });
     const json* uri = Schema::member(b, "uri");
     if (uri) s.string(*uri, at + ".uri");
-    files.push_back(uri && !uri->get<std::string>().starts_with("data:") ? uri->get<std::string>() : "");
+    files.push_back(uri && !uri->get<std::string>().starts_with("data:") ? uri->get<std::string>()
+                                                                         : "");
     if (!uri && !fallback && !(glb && index == 0))
       s.fail(at, glb ? "has no uri: only the first buffer of a GLB may use its BIN chunk"
                      : "has no uri, and only a GLB's first buffer may have none");
@@ -501,15 +551,23 @@ void check_schema(const Schema& s, const json& root, bool glb, std::vector<std::
     s.optional(t, "source", at, [&](const json& v, const std::string& p) { s.integer(v, p); });
   });
   s.each_object(root, "samplers", "", [&](const json& t, const std::string& at) {
-    s.optional(t, "magFilter", at, [&](const json& v, const std::string& p) { s.one_of(v, p, {9728, 9729}); });
+    s.optional(t, "magFilter", at, [&](const json& v, const std::string& p) {
+      s.one_of(v, p, {9728, 9729});
+    });
     s.optional(t, "minFilter", at, [&](const json& v, const std::string& p) {
       s.one_of(v, p, {9728, 9729, 9984, 9985, 9986, 9987});
     });
-    s.optional(t, "wrapS", at, [&](const json& v, const std::string& p) { s.one_of(v, p, {33071, 33648, 10497}); });
-    s.optional(t, "wrapT", at, [&](const json& v, const std::string& p) { s.one_of(v, p, {33071, 33648, 10497}); });
+    s.optional(t, "wrapS", at, [&](const json& v, const std::string& p) {
+      s.one_of(v, p, {33071, 33648, 10497});
+    });
+    s.optional(t, "wrapT", at, [&](const json& v, const std::string& p) {
+      s.one_of(v, p, {33071, 33648, 10497});
+    });
   });
-  s.each_object(root, "materials", "", [&](const json& m, const std::string& at) { check_material(s, m, at); });
-  s.each_object(root, "cameras", "", [&](const json& c, const std::string& at) { check_camera(s, c, at); });
+  s.each_object(root, "materials", "",
+                [&](const json& m, const std::string& at) { check_material(s, m, at); });
+  s.each_object(root, "cameras", "",
+                [&](const json& c, const std::string& at) { check_camera(s, c, at); });
   s.each_object(root, "skins", "", [](const json&, const std::string&) {});
   s.each_object(root, "animations", "", [](const json&, const std::string&) {});
   if (const json* l = s.extension(root, "KHR_lights_punctual", ""))
@@ -524,27 +582,35 @@ GltfDocument read_gltf_document(const std::string& path, const std::string& byte
   std::string_view text = bytes;
   if (bytes.size() >= 4 && le32(bytes, 0) == kGlbMagic) {
     doc.glb = true;
-    if (bytes.size() < 20) error_at(path, 0, 0, "GLB is truncated: " + std::to_string(bytes.size()) + " bytes");
+    if (bytes.size() < 20)
+      error_at(path, 0, 0, "GLB is truncated: " + std::to_string(bytes.size()) + " bytes");
     const std::uint32_t version = le32(bytes, 4), length = le32(bytes, 8);
     if (version == 1) refuse_gltf1(path, "1 (binary glTF version 1)");
-    if (version != 2) error_at(path, 0, 0, "GLB version " + std::to_string(version) + "; rt2 reads version 2");
+    if (version != 2)
+      error_at(path, 0, 0, "GLB version " + std::to_string(version) + "; rt2 reads version 2");
     if (length != bytes.size())
-      error_at(path, 0, 0, "GLB header gives a length of " + std::to_string(length) +
-                               " bytes, the file has " + std::to_string(bytes.size()));
+      error_at(path, 0, 0,
+               "GLB header gives a length of " + std::to_string(length) + " bytes, the file has " +
+                   std::to_string(bytes.size()));
     std::size_t at = 12;
     bool first = true;
     while (at < bytes.size()) {
-      if (bytes.size() - at < 8) error_at(path, 0, 0, "GLB chunk header at byte " + std::to_string(at) + " is truncated");
+      if (bytes.size() - at < 8)
+        error_at(path, 0, 0, "GLB chunk header at byte " + std::to_string(at) + " is truncated");
       const std::uint32_t size = le32(bytes, at), type = le32(bytes, at + 4);
       if (size > bytes.size() - at - 8)
-        error_at(path, 0, 0, "GLB chunk at byte " + std::to_string(at) + " claims " + std::to_string(size) +
-                                 " bytes, beyond the file's end");
+        error_at(path, 0, 0,
+                 "GLB chunk at byte " + std::to_string(at) + " claims " + std::to_string(size) +
+                     " bytes, beyond the file's end");
       const std::string_view data(bytes.data() + at + 8, size);
       if (first && type != kChunkJson) error_at(path, 0, 0, "GLB's first chunk is not its JSON");
-      if (first) text = data;
-      else if (type == kChunkBin && doc.bin.empty()) doc.bin.assign(data);
+      if (first)
+        text = data;
+      else if (type == kChunkBin && doc.bin.empty())
+        doc.bin.assign(data);
       else if (type == kChunkJson || type == kChunkBin)
-        error_at(path, 0, 0, "GLB has a second " + std::string(type == kChunkJson ? "JSON" : "BIN") + " chunk");
+        error_at(path, 0, 0,
+                 "GLB has a second " + std::string(type == kChunkJson ? "JSON" : "BIN") + " chunk");
       first = false;
       at += 8 + size;  // other chunk types are skipped, as glTF says
     }
@@ -558,7 +624,8 @@ GltfDocument read_gltf_document(const std::string& path, const std::string& byte
     error_at(path, 0, 0, std::string("is not valid JSON: ") + one_line(e.what()));
   }
   const Schema s(path);
-  if (!root.is_object()) s.fail("the JSON", std::string("is ") + kind(root) + ", expected an object");
+  if (!root.is_object())
+    s.fail("the JSON", std::string("is ") + kind(root) + ", expected an object");
   check_asset_and_extensions(path, s, root);
   check_schema(s, root, doc.glb, doc.buffer_files);
   if (const json* used = Schema::member(root, "extensionsUsed"))
@@ -572,7 +639,8 @@ GltfDocument read_gltf_document(const std::string& path, const std::string& byte
       json& prims = (*meshes)[m]["primitives"];
       for (std::size_t p = 0; p < prims.size(); ++p) {
         json& prim = prims[p];
-        if (!prim.contains("extensions") || !prim["extensions"].contains("KHR_draco_mesh_compression"))
+        if (!prim.contains("extensions") ||
+            !prim["extensions"].contains("KHR_draco_mesh_compression"))
           continue;
         const json& ext = prim["extensions"]["KHR_draco_mesh_compression"];
         DracoPrimitive d{int(m), int(p), -1, ext["bufferView"].get<int>(), {}};
@@ -606,7 +674,9 @@ GltfDocument read_gltf_document(const std::string& path, const std::string& byte
   if (json* buffers = root.contains("buffers") ? &root["buffers"] : nullptr)
     for (std::size_t b = 0; b < buffers->size(); ++b) {
       json& buffer = (*buffers)[b];
-      const json* ext = buffer.contains("extensions") ? Schema::member(buffer["extensions"], "EXT_meshopt_compression") : nullptr;
+      const json* ext = buffer.contains("extensions")
+                            ? Schema::member(buffer["extensions"], "EXT_meshopt_compression")
+                            : nullptr;
       if (!ext || !ext->value("fallback", false)) continue;
       doc.fallback_buffers.push_back(int(b));
       buffer["uri"] = "data:application/octet-stream;base64,AA==";  // one byte: tinygltf wants data

@@ -147,8 +147,10 @@ tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, 
     const std::string name = uri_decode(doc.buffer_files[b]);
     std::error_code ec;
     if (!fs::is_regular_file(asset_file(path, name, policy, at), ec))
-      error_at(at, 0, 0, "'" + one_line(name) + "': " + (fs::exists(fs::path(path).parent_path() / name, ec)
-                                                          ? "not a regular file" : "file not found"));
+      error_at(at, 0, 0,
+               "'" + one_line(name) + "': " +
+                   (fs::exists(fs::path(path).parent_path() / name, ec) ? "not a regular file"
+                                                                        : "file not found"));
   }
   Folder folder{path, fs::path(path).parent_path().string(), policy};
   if (folder.prefix.empty()) folder.prefix = ".";
@@ -163,8 +165,9 @@ tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, 
   const std::string input = tinygltf_bytes(doc);
   const auto* data = reinterpret_cast<const unsigned char*>(input.data());
   const auto size = static_cast<unsigned int>(input.size());
-  const bool ok = doc.glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base)
-                          : loader.LoadASCIIFromString(&model, &err, &warn, input.data(), size, base);
+  const bool ok = doc.glb
+                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, base)
+                      : loader.LoadASCIIFromString(&model, &err, &warn, input.data(), size, base);
   if (!ok) error_at(path, 0, 0, first_line(err));
   decode_compressed(path, doc, model);
   return model;
@@ -369,15 +372,16 @@ MetallicRoughness from_specular_glossiness(const std::array<double, 3>& diffuse,
   const double d = brightness(diffuse), sp = brightness(specular);
   double metallic = 0;
   if (sp >= kDielectric) {
-    const double a = kDielectric, b = d * one_minus_specular / (1 - kDielectric) + sp - 2 * kDielectric,
+    const double a = kDielectric,
+                 b = d * one_minus_specular / (1 - kDielectric) + sp - 2 * kDielectric,
                  c = kDielectric - sp;
     metallic = std::clamp((-b + std::sqrt(std::max(b * b - 4 * a * c, 0.0))) / (2 * a), 0.0, 1.0);
   }
   MetallicRoughness out;
   float rgb[3];
   for (int k = 0; k < 3; ++k) {
-    const double from_diffuse =
-        diffuse[std::size_t(k)] * one_minus_specular / (1 - kDielectric) / std::max(1 - metallic, kEpsilon);
+    const double from_diffuse = diffuse[std::size_t(k)] * one_minus_specular / (1 - kDielectric) /
+                                std::max(1 - metallic, kEpsilon);
     const double from_specular =
         (specular[std::size_t(k)] - kDielectric * (1 - metallic)) / std::max(metallic, kEpsilon);
     const double m2 = metallic * metallic;
@@ -646,7 +650,8 @@ std::uint32_t GltfReader::material(int index) {
     };
     const std::array<double, 4> diffuse = numbers("diffuseFactor", {1, 1, 1, 1});
     const std::array<double, 4> specular = numbers("specularFactor", {1, 1, 1, 0});
-    const double gloss = x.Has("glossinessFactor") ? x.Get("glossinessFactor").GetNumberAsDouble() : 1.0;
+    const double gloss =
+        x.Has("glossinessFactor") ? x.Get("glossinessFactor").GetNumberAsDouble() : 1.0;
     const MetallicRoughness mr = from_specular_glossiness(
         {diffuse[0], diffuse[1], diffuse[2]}, {specular[0], specular[1], specular[2]}, gloss);
     m.base_color = mr.base_color;
@@ -797,11 +802,12 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   const int pos_index = attribute("POSITION");
   if (pos_index < 0) fail(at + ": has no POSITION attribute");
   // KHR_mesh_quantization allows integer positions, normals and texture coordinates.
-  const Accessor pos = accessor(pos_index, at + " POSITION",
-                                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
-                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                                3);
+  const Accessor pos =
+      accessor(pos_index, at + " POSITION",
+               {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+               3);
   if (vertices_ + pos.count > kMaxGltfVertices)
     fail("more than " + std::to_string(kMaxGltfVertices) + " vertices in all mesh instances");
   vertices_ += pos.count;
@@ -824,7 +830,8 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
                                    TINYGLTF_COMPONENT_TYPE_SHORT},
                                   3);
     if (nrm.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm.normalized)
-      fail(at + ": NORMAL accessor " + std::to_string(n_index) + ": integer normals must be normalized");
+      fail(at + ": NORMAL accessor " + std::to_string(n_index) +
+           ": integer normals must be normalized");
     if (nrm.count != pos.count)
       fail(at + ": NORMAL has " + std::to_string(nrm.count) + " elements, POSITION " +
            std::to_string(pos.count));

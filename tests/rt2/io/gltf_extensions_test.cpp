@@ -20,10 +20,10 @@
 #include "rt2/base/error.h"
 #include "rt2/image/image_compare.h"
 #include "rt2/io/scene_io.h"
-#include "tests/rt2/test_util.h"
 #include "tests/rt2/error_of.h"
 #include "tests/rt2/io/gltf_file.h"
 #include "tests/rt2/temp_dir.h"
+#include "tests/rt2/test_util.h"
 
 namespace rt2 {
 namespace {
@@ -69,9 +69,11 @@ std::vector<std::array<float, 9>> triangles(const Scene& s) {
     for (const auto& f : m.faces) {
       std::array<std::array<float, 3>, 3> c;
       for (int k = 0; k < 3; ++k)
-        for (int a = 0; a < 3; ++a) c[std::size_t(k)][std::size_t(a)] = m.positions[f[std::size_t(k)]][a];
+        for (int a = 0; a < 3; ++a)
+          c[std::size_t(k)][std::size_t(a)] = m.positions[f[std::size_t(k)]][a];
       std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());  // keep the winding
-      out.push_back({c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2]});
+      out.push_back(
+          {c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2]});
     }
   std::sort(out.begin(), out.end());
   return out;
@@ -92,7 +94,8 @@ TEST(GltfQuantization, IntegerAttributesDecodeAsTheSpecNormalizesThem) {
   // KHR_mesh_quantization allows and a texture transform (scale 1/1024) maps to [0, 1].
   f.accessor(std::vector<std::int16_t>{32767, 0, 0, 0, 32767, 0, -32768, -32768, 0, 0}, 5122,
              "VEC3", 3, true);
-  f.accessor(std::vector<std::int8_t>{0, 0, 127, 0, 0, 127, 0, 0, -128, 0, 0, 0}, 5120, "VEC3", 3, true);
+  f.accessor(std::vector<std::int8_t>{0, 0, 127, 0, 0, 127, 0, 0, -128, 0, 0, 0}, 5120, "VEC3", 3,
+             true);
   f.accessor(std::vector<std::uint16_t>{0, 0, 1024, 0, 512, 256}, 5123, "VEC2", 3);
   const std::string rest =
       R"(,"extensionsUsed":["KHR_mesh_quantization","KHR_texture_transform"],)"
@@ -151,12 +154,13 @@ std::string meshopt_octahedron(bool glb) {
   const std::size_t v_at = f.append(vbuf), i_at = f.append(ibuf);
   const std::string views =
       R"([{"buffer":1,"byteOffset":0,"byteLength":192,"byteStride":32,"extensions":)"
-      R"({"EXT_meshopt_compression":{"buffer":0,"byteOffset":)" + std::to_string(v_at) +
-      R"(,"byteLength":)" + std::to_string(vbuf.size()) +
+      R"({"EXT_meshopt_compression":{"buffer":0,"byteOffset":)" +
+      std::to_string(v_at) + R"(,"byteLength":)" + std::to_string(vbuf.size()) +
       R"(,"byteStride":32,"mode":"ATTRIBUTES","count":6}}},)"
       R"({"buffer":1,"byteOffset":192,"byteLength":48,"extensions":{"EXT_meshopt_compression":)"
-      R"({"buffer":0,"byteOffset":)" + std::to_string(i_at) + R"(,"byteLength":)" +
-      std::to_string(ibuf.size()) + R"(,"byteStride":2,"mode":"TRIANGLES","count":24}}}])";
+      R"({"buffer":0,"byteOffset":)" +
+      std::to_string(i_at) + R"(,"byteLength":)" + std::to_string(ibuf.size()) +
+      R"(,"byteStride":2,"mode":"TRIANGLES","count":24}}}])";
   const std::string accessors =
       R"([{"bufferView":0,"byteOffset":0,"componentType":5126,"count":6,"type":"VEC3"},)"
       R"({"bufferView":0,"byteOffset":12,"componentType":5126,"count":6,"type":"VEC3"},)"
@@ -169,7 +173,8 @@ std::string meshopt_octahedron(bool glb) {
       std::to_string(bin.size()) +
       (glb ? "" : R"(,"uri":"data:application/octet-stream;base64,)" + test::base64(bin) + "\"") +
       R"(},{"byteLength":240,"extensions":{"EXT_meshopt_compression":{"fallback":true}}}],)"
-      R"("bufferViews":)" + views + R"(,"accessors":)" + accessors + kMesh +
+      R"("bufferViews":)" +
+      views + R"(,"accessors":)" + accessors + kMesh +
       R"(,"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
   return glb ? test::glb_of(json, bin) : json;
 }
@@ -217,8 +222,11 @@ std::string draco_octahedron() {
   builder.Start(8);
   const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
   for (int t = 0; t < 8; ++t) {
-    const auto corner = [&](int k) { return o.positions.data() + 3 * o.indices[std::size_t(3 * t + k)]; };
-    builder.SetAttributeValuesForFace(pos, draco::FaceIndex(std::uint32_t(t)), corner(0), corner(1), corner(2));
+    const auto corner = [&](int k) {
+      return o.positions.data() + 3 * o.indices[std::size_t(3 * t + k)];
+    };
+    builder.SetAttributeValuesForFace(pos, draco::FaceIndex(std::uint32_t(t)), corner(0), corner(1),
+                                      corner(2));
   }
   const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
   draco::Encoder encoder;
@@ -231,10 +239,15 @@ std::string draco_octahedron() {
   const int id = mesh->attribute(0)->unique_id();
   return R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_draco_mesh_compression"],)"
          R"("extensionsRequired":["KHR_draco_mesh_compression"],)"
-         R"("buffers":[{"byteLength":)" + std::to_string(f.bin().size()) +
-         R"(,"uri":"data:application/octet-stream;base64,)" + test::base64(f.bin()) + R"("}],)"
-         R"("bufferViews":[{"buffer":0,"byteLength":)" + std::to_string(bytes.size()) + R"(}],)"
-         R"("accessors":[{"componentType":5126,"count":)" + std::to_string(mesh->num_points()) +
+         R"("buffers":[{"byteLength":)" +
+         std::to_string(f.bin().size()) + R"(,"uri":"data:application/octet-stream;base64,)" +
+         test::base64(f.bin()) +
+         R"("}],)"
+         R"("bufferViews":[{"buffer":0,"byteLength":)" +
+         std::to_string(bytes.size()) +
+         R"(}],)"
+         R"("accessors":[{"componentType":5126,"count":)" +
+         std::to_string(mesh->num_points()) +
          R"(,"type":"VEC3","min":[-1,-1,-1],"max":[1,1,1]},)"
          R"({"componentType":5125,"count":24,"type":"SCALAR"}],)"
          R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,)"
@@ -292,13 +305,15 @@ TEST(GltfSpecularGlossiness, ConvertsToMetallicRoughness) {
   const auto material = [&](const std::string& ext) {
     const std::string rest =
         R"(,"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],"materials":[{"extensions":)"
-        R"({"KHR_materials_pbrSpecularGlossiness":)" + ext + "}}]";
+        R"({"KHR_materials_pbrSpecularGlossiness":)" +
+        ext + "}}]";
     const Scene s = load_scene(dir.write("s.gltf", plain_octahedron(rest)));
     return s.materials.at(std::size_t(s.find_material("s.gltf:#0")));
   };
   // A dielectric: 4 % specular reflects as a non-metal; its base colour is its diffuse.
   const Material plastic = material(
-      R"({"diffuseFactor":[0.5,0.25,0.125,1],"specularFactor":[0.04,0.04,0.04],"glossinessFactor":0.7})");
+      R"({"diffuseFactor":[0.5,0.25,0.125,1],"specularFactor":[0.04,0.04,0.04],)"
+      R"("glossinessFactor":0.7})");
   EXPECT_FLOAT_EQ(plastic.metallic, 0.0f);
   EXPECT_NEAR(plastic.roughness, 0.3f, 1e-6f);
   EXPECT_NEAR(plastic.base_color[0], 0.5f, 1e-6f);
@@ -313,12 +328,13 @@ TEST(GltfSpecularGlossiness, ConvertsToMetallicRoughness) {
 
 TEST(GltfExtensions, ARequiredExtensionRt2LacksIsRefusedByName) {
   const test::TempDir dir("gltfe");
-  const std::string path = dir.write(
-      "r.gltf", plain_octahedron(R"(,"extensionsUsed":["KHR_texture_basisu"],)"
-                                 R"("extensionsRequired":["KHR_texture_basisu"])"));
+  const std::string path =
+      dir.write("r.gltf", plain_octahedron(R"(,"extensionsUsed":["KHR_texture_basisu"],)"
+                                           R"("extensionsRequired":["KHR_texture_basisu"])"));
   EXPECT_EQ(test::error_of([&] { load_scene(path); }),
-            path + ": requires extension KHR_texture_basisu (extensionsRequired), which rt2 "
-                   "does not implement");
+            path +
+                ": requires extension KHR_texture_basisu (extensionsRequired), which rt2 "
+                "does not implement");
 }
 
 TEST(GltfExtensions, AUsedExtensionRt2IgnoresIsWarnedByName) {
@@ -329,7 +345,8 @@ TEST(GltfExtensions, AUsedExtensionRt2IgnoresIsWarnedByName) {
   load_scene(path);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("ignores extension KHR_materials_clearcoat: clearcoat layers are not drawn"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
   EXPECT_NE(err.find("ignores extension VENDOR_x"), std::string::npos) << err;
 }
 
@@ -338,18 +355,19 @@ TEST(GltfExtensions, MorphTargetsAreWarned) {
   GltfFile f;
   f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
   f.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
-  const std::string path = dir.write(
-      "morph.gltf", f.json(R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
-                           R"("targets":[{"POSITION":1}]}],"weights":[0.5]}])"));
+  const std::string path =
+      dir.write("morph.gltf", f.json(R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
+                                     R"("targets":[{"POSITION":1}]}],"weights":[0.5]}])"));
   testing::internal::CaptureStderr();
   load_scene(path);
-  EXPECT_NE(testing::internal::GetCapturedStderr().find("morph targets are ignored"), std::string::npos);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("morph targets are ignored"),
+            std::string::npos);
 }
 
 TEST(GltfVersion, Gltf1IsRefusedWithItsVersion) {
   const test::TempDir dir("gltfv");
-  const std::string v1 = dir.write(
-      "v1.gltf", R"({"asset":{"version":"1.0"},"meshes":{"m":{"primitives":[]}}})");
+  const std::string v1 =
+      dir.write("v1.gltf", R"({"asset":{"version":"1.0"},"meshes":{"m":{"primitives":[]}}})");
   EXPECT_EQ(test::error_of([&] { load_scene(v1); }),
             v1 + ": glTF 1.0 is not supported (asset.version '1.0'); rt2 reads glTF 2.0 (convert "
                  "it, e.g. with Khronos' glTF-Pipeline)");
@@ -367,10 +385,11 @@ TEST(GltfBombs, DeeplyNestedJsonIsRefusedBeforeItIsParsed) {
   const test::TempDir dir("gltfb");
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   for (const std::string& json :
-       {R"({"asset":{"version":"2.0"},"extras":)" + deep + "}",
-        std::string(100000, '{')}) {
+       {R"({"asset":{"version":"2.0"},"extras":)" + deep + "}", std::string(100000, '{')}) {
     const std::string path = dir.write("deep.gltf", json);
-    EXPECT_NE(test::error_of([&] { load_scene(path); }).find("JSON nests arrays and objects more than 128 deep"),
+    EXPECT_NE(test::error_of([&] {
+                load_scene(path);
+              }).find("JSON nests arrays and objects more than 128 deep"),
               std::string::npos);
   }
 }
@@ -410,12 +429,14 @@ TEST(GltfSchema, ViolationsNameTheirJsonPath) {
        "materials[0].emissiveFactor[0] is 2, expected 0 to 1"},
       {R"("scenes":[{"nodes":[0]}])", R"("scenes":[{"nodes":[0],"name":42}])",
        "scenes[0].name is a number, expected a string"},
-      {R"("byteOffset":0,)", R"("byteOffset":-4,)", "bufferViews[0].byteOffset is -4, expected >= 0"},
+      {R"("byteOffset":0,)", R"("byteOffset":-4,)",
+       "bufferViews[0].byteOffset is -4, expected >= 0"},
       {R"("buffer":0,"byteOffset":0,)", R"("buffer":0,"byteStride":-12,"byteOffset":0,)",
        "bufferViews[0].byteStride is -12, expected 4 to 252"},
       {R"("componentType":5126)", R"("componentType":5130)",
        "accessors[0].componentType is 5130, expected one of"},
-      {R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0.5}])", "nodes[0].mesh is not a whole number"},
+      {R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0.5}])",
+       "nodes[0].mesh is not a whole number"},
       {R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"rotation":[0,0,0]}])",
        "nodes[0].rotation has 3 elements, expected 4"},
   };
@@ -450,14 +471,17 @@ TEST(GltfConfinement, FilesOutsideTheAssetsFolderAreRefusedUnlessAllowed) {
   const auto with_image = [&](const std::string& uri) {
     return plain_octahedron(
         R"(,"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
-        R"("textures":[{"source":0}],"images":[{"uri":")" + uri + R"("}])");
+        R"("textures":[{"source":0}],"images":[{"uri":")" +
+        uri + R"("}])");
   };
   const std::string absolute = (dir.root() / "outside" / "secret.png").string();
-  for (const std::string uri : {std::string("../outside/secret.png"), absolute,
-                                std::string("link/secret.png"), std::string("%2E%2E/outside/secret.png")}) {
+  for (const std::string uri :
+       {std::string("../outside/secret.png"), absolute, std::string("link/secret.png"),
+        std::string("%2E%2E/outside/secret.png")}) {
     const std::string path = dir.write("asset/x.gltf", with_image(uri));
     const std::string msg = test::error_of([&] { load_scene(path); });
-    EXPECT_NE(msg.find("lies outside the folder of x.gltf"), std::string::npos) << uri << ": " << msg;
+    EXPECT_NE(msg.find("lies outside the folder of x.gltf"), std::string::npos)
+        << uri << ": " << msg;
     AssetPolicy allow;
     allow.allow_outside_assets = true;
     const Scene s = load_scene(path, allow);
@@ -489,7 +513,8 @@ TEST(GltfRender, CompressedFilesRenderAsTheirOriginals) {
     fit_framed_camera(s, st.width, st.height);
     return test::render_scene(s, st);
   };
-  const auto expect_close = [&](const Image& image, const Image& reference, const std::string& what) {
+  const auto expect_close = [&](const Image& image, const Image& reference,
+                                const std::string& what) {
     const ImageError e = compare_images(image, reference);
     std::printf("[ measure  ] %s: PSNR %.1f dB\n", what.c_str(), e.psnr);
     EXPECT_GE(e.psnr, 30.0) << what;
@@ -499,7 +524,8 @@ TEST(GltfRender, CompressedFilesRenderAsTheirOriginals) {
   expect_close(render(dir.write("d.gltf", draco_octahedron())), plain, "Draco");
   const std::string hostile = std::string(RT2_SOURCE_DIR) + "/tests/hostile/";
   const Image tetra = render(hostile + "tools_obj2gltf.glb");
-  for (const char* f : {"tools_gltfpack.glb", "tools_gltfpack_meshopt.glb", "tools_gltf_pipeline_draco.glb"})
+  for (const char* f :
+       {"tools_gltfpack.glb", "tools_gltfpack_meshopt.glb", "tools_gltf_pipeline_draco.glb"})
     expect_close(render(hostile + f), tetra, f);
 }
 
