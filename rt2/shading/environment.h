@@ -50,8 +50,8 @@ struct IrradianceSh {
 //   cheaper per shaded point than a convolved map's direction-to-uv conversion and
 //   bilinear lookup.
 // * specular: kSpecularLevels maps at roughness k / (kSpecularLevels - 1): level 0 is the
-//   source (at most 512 texels wide), level k halves the resolution of level k-1 (not
-//   below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
+//   source (at most 512 texels on each side), level k halves the resolution of level k-1
+//   (not below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
 //   Karis's n = v = r assumption, weighted by n·l, from 128 GGX-distributed Hammersley
 //   samples, each read from the source's mip level that matches its solid angle
 //   (Colbert and Krivanek 2007, "GPU-Based Importance Sampling": filtered importance
