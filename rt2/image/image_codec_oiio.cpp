@@ -1,14 +1,23 @@
 // rt2/image/image_codec_oiio.cpp — the image codec on OpenImageIO, built as
 // lib/librt2_image_codec.so (see image_codec.h). The only file of rt2 that includes OIIO.
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <iterator>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "rt2/image/image_codec.h"
@@ -19,6 +28,9 @@ using OIIO::ImageInput;
 using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
+using rt2::ImageHeader;
+using rt2::kMaxMipLevels;
+using rt2::kMaxSubimages;
 
 // OIIO's messages on one line, and short: a broken file can make it repeat the same
 // complaint for every tile it tried.
@@ -74,22 +86,135 @@ std::string encode(const std::string& extension, const float* rgb, int width, in
   return "";
 }
 
-std::string decode_loudly(const std::string& path, std::vector<float>& rgb, int& width,
-                          int& height, bool& srgb) {
-  auto in = ImageInput::open(path);
-  if (!in) return one_line(OIIO::geterror());
+// The readers rt2 lets read a file, and how a file shows it is theirs: its first bytes.
+// Targa has no signature; it is recognised by the extension .tga alone.
+struct Format {
+  const char* name;       // OIIO's reader
+  const char* signature;  // the file's first bytes
+  std::size_t length;
+};
+constexpr Format kFormats[] = {
+    {"png", "\x89PNG\r\n\x1a\n", 8}, {"jpeg", "\xff\xd8\xff", 3},
+    {"openexr", "\x76\x2f\x31\x01", 4}, {"hdr", "#?", 2},
+    {"tiff", "II*\0", 4}, {"tiff", "MM\0*", 4}, {"tiff", "II+\0", 4}, {"tiff", "MM\0+", 4},
+    {"bmp", "BM", 2}, {"pnm", "P1", 2}, {"pnm", "P2", 2}, {"pnm", "P3", 2}, {"pnm", "P4", 2},
+    {"pnm", "P5", 2}, {"pnm", "P6", 2}, {"pnm", "PF", 2}, {"pnm", "Pf", 2}};
+
+// The reader for the regular file `path`, from its first bytes; "" and `why` otherwise.
+std::string format_of(const std::string& path, std::string& why) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    why = std::strerror(errno);
+    return "";
+  }
+  struct stat st {};
+  char head[8] = {};
+  ssize_t got = 0;
+  const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+  if (regular) got = ::read(fd, head, sizeof head);
+  ::close(fd);
+  if (!regular) {
+    why = "not a regular file";
+    return "";
+  }
+  for (const Format& f : kFormats)
+    if (got >= ssize_t(f.length) && std::memcmp(head, f.signature, f.length) == 0) return f.name;
+  const std::string ext = OIIO::Filesystem::extension(path);
+  if (OIIO::Strutil::iequals(ext, ".tga")) return "targa";
+  why = "not a PNG, JPEG, OpenEXR, Radiance HDR, TIFF, BMP, PNM or Targa image";
+  return "";
+}
+
+// An ImageInput::Creator per format, for the texture cache: it opens a file with the
+// reader probe() chose, never by the file's name.
+template <std::size_t I>
+ImageInput* create_reader() {
+  return ImageInput::create(kFormats[I].name).release();
+}
+template <std::size_t... I>
+constexpr auto creators(std::index_sequence<I...>) {
+  return std::array<ImageInput::Creator, sizeof...(I)>{create_reader<I>...};
+}
+constexpr auto kCreators = creators(std::make_index_sequence<std::size(kFormats)>());
+
+ImageInput::Creator creator_of(const std::string& format) {
+  for (std::size_t i = 0; i < std::size(kFormats); ++i)
+    if (format == kFormats[i].name) return kCreators[i];
+  return nullptr;
+}
+
+// `path` opened with the reader `format`; nullptr and `why` when it cannot be.
+std::unique_ptr<ImageInput> open_as(const std::string& path, const std::string& format,
+                                    std::string& why) {
+  auto in = ImageInput::create(format);
+  if (!in) {
+    why = one_line(OIIO::geterror());
+    return nullptr;
+  }
+  ImageSpec spec;
+  if (!in->open(path, spec)) {
+    why = one_line(in->geterror());
+    return nullptr;
+  }
+  return in;
+}
+
+void fill_header(const ImageSpec& spec, ImageHeader& h) {
+  h.width = spec.width;
+  h.height = spec.height;
+  h.depth = spec.depth;
+  h.x = spec.x;
+  h.y = spec.y;
+  h.full_width = spec.full_width;
+  h.full_height = spec.full_height;
+  h.full_x = spec.full_x;
+  h.full_y = spec.full_y;
+  h.channels = spec.nchannels;
+  h.deep = spec.deep;
+}
+
+// Whether `spec` is still what the header said (the file may change between reads).
+bool matches(const ImageSpec& spec, const ImageHeader& h) {
+  ImageHeader now;
+  fill_header(spec, now);
+  return now.width == h.width && now.height == h.height && now.depth == h.depth &&
+         now.channels == h.channels && now.deep == h.deep && now.x == h.x && now.y == h.y;
+}
+
+std::string probe_loudly(const std::string& path, ImageHeader& header) {
+  std::string why;
+  header = ImageHeader{};
+  header.format = format_of(path, why);
+  if (header.format.empty()) return why;
+  auto in = open_as(path, header.format, why);
+  if (!in) return why;
+  fill_header(in->spec(), header);
+  // Counted, not listed: a TIFF can chain thousands of directories.
+  header.miplevels = 1;
+  while (header.miplevels <= kMaxMipLevels && in->seek_subimage(0, header.miplevels))
+    ++header.miplevels;
+  header.subimages = 1;
+  while (header.subimages <= kMaxSubimages && in->seek_subimage(header.subimages, 0))
+    ++header.subimages;
+  (void)in->geterror();  // the failed seek's
+  return "";
+}
+
+std::string decode_loudly(const std::string& path, const ImageHeader& header,
+                          std::vector<float>& rgb, bool& srgb) {
+  std::string why;
+  auto in = open_as(path, header.format, why);
+  if (!in) return why;
   const ImageSpec& spec = in->spec();
-  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.depth > 1)
-    return "the image has no pixels, or is not a 2D image";
-  const int nc = spec.nchannels;
+  if (!matches(spec, header)) return "the file changed while it was read";
+  // The first three channels (or fewer) straight into rgb, 3 floats apart.
+  const int take = std::min(spec.nchannels, 3);
   const std::size_t n = std::size_t(spec.width) * std::size_t(spec.height);
-  std::vector<float> all(n * std::size_t(nc));
-  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, all.data())) return one_line(in->geterror());
-  width = spec.width;
-  height = spec.height;
-  rgb.resize(n * 3);
+  rgb.assign(n * 3, 0.0f);
+  if (!in->read_image(0, 0, 0, take, TypeDesc::FLOAT, rgb.data(), 3 * sizeof(float)))
+    return one_line(in->geterror());
   for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = all[i * nc + std::min(c, nc - 1)];
+    for (int c = take; c < 3; ++c) rgb[3 * i + c] = rgb[3 * i + take - 1];
   const std::string cs = spec.get_string_attribute("oiio:ColorSpace");
   const bool integer = spec.format.basetype == TypeDesc::UINT8 ||
                        spec.format.basetype == TypeDesc::UINT16;
@@ -120,9 +245,13 @@ auto quietly(F&& f) {
   return f();
 }
 
-std::string decode(const std::string& path, std::vector<float>& rgb, int& width, int& height,
+std::string probe(const std::string& path, ImageHeader& header) {
+  return quietly([&] { return probe_loudly(path, header); });
+}
+
+std::string decode(const std::string& path, const ImageHeader& header, std::vector<float>& rgb,
                    bool& srgb) {
-  return quietly([&] { return decode_loudly(path, rgb, width, height, srgb); });
+  return quietly([&] { return decode_loudly(path, header, rgb, srgb); });
 }
 
 OIIO::TextureSystem* system_of(void* s) { return static_cast<OIIO::TextureSystem*>(s); }
@@ -146,36 +275,53 @@ void* texture_system_create() {
 // invalidates them.
 void texture_system_destroy(void*) {}
 
-void* texture_open(void* s, const std::string& path, int& channels, std::string& why) {
+// Reads every texel of the level `miplevel` through the cache, in blocks of at most 4 MiB.
+bool read_level(OIIO::TextureSystem* ts, OIIO::TextureSystem::TextureHandle* h,
+                const ImageSpec& level, int miplevel) {
+  const std::int64_t nc = level.nchannels;
+  const std::int64_t cols = std::min<std::int64_t>(level.width, std::max<std::int64_t>(1, (1 << 22) / nc));
+  const std::int64_t rows = std::max<std::int64_t>(1, (1 << 22) / (cols * nc));
+  std::vector<unsigned char> block(std::size_t(cols * rows * nc));
+  OIIO::TextureOpt opt;
+  OIIO::TextureSystem::Perthread* thread = ts->get_perthread_info();
+  for (std::int64_t y = 0; y < level.height; y += rows)
+    for (std::int64_t x = 0; x < level.width; x += cols)
+      if (!ts->get_texels(h, thread, opt, miplevel, int(level.x + x),
+                          int(level.x + std::min<std::int64_t>(level.width, x + cols)),
+                          int(level.y + y), int(level.y + std::min<std::int64_t>(level.height, y + rows)),
+                          0, 1, 0, int(nc), TypeDesc::UINT8, block.data()))
+        return false;
+  return true;
+}
+
+void* texture_open(void* s, const std::string& path, const ImageHeader& header, std::string& why) {
   OIIO::TextureSystem* ts = system_of(s);
   return quietly([&]() -> void* {
-    // a file of this name read before (by an earlier scene) may have changed since
-    ts->invalidate(OIIO::ustring(path), /*force=*/true);
-    OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(path));
+    const OIIO::ustring name(path);
+    const ImageInput::Creator creator = creator_of(header.format);
+    // replacing a file of this name read before (by an earlier scene): it may have changed
+    if (!creator || !ts->imagecache()->add_file(name, creator, nullptr, /*replace=*/true)) {
+      why = creator ? one_line(ts->imagecache()->geterror()) : "no reader for " + header.format;
+      return nullptr;
+    }
+    OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
     ImageSpec spec;
     if (!h || !ts->get_imagespec(h, nullptr, 0, spec)) {
       why = one_line(ts->geterror());
       return nullptr;
     }
-    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
-      why = "the image has no pixels";
+    if (!matches(spec, header)) {
+      why = "the file changed while it was read";
       return nullptr;
     }
-    // Read every texel of the finest level now, a strip of rows at a time, so that a file
-    // truncated or corrupt past its header is an error here and not black texels (and a
-    // complaint per tile) while rendering; the cache keeps what it read.
-    OIIO::TextureOpt opt;
-    const int rows = std::max(1, (1 << 22) / std::max(1, spec.width * spec.nchannels));
-    std::vector<unsigned char> strip(std::size_t(spec.width) * std::size_t(rows) *
-                                     std::size_t(spec.nchannels));
-    for (int y = 0; y < spec.height; y += rows)
-      if (!ts->get_texels(h, ts->get_perthread_info(), opt, 0, spec.x, spec.x + spec.width,
-                          spec.y + y, spec.y + std::min(spec.height, y + rows), 0, 1, 0,
-                          spec.nchannels, TypeDesc::UINT8, strip.data())) {
-        why = one_line(ts->geterror());
-        return nullptr;
-      }
-    channels = spec.nchannels;
+    // Read every texel of the finest level now, so that a file truncated or corrupt past
+    // its header is an error here and not black texels (and a complaint per tile) while
+    // rendering; the cache keeps what it read.
+    const ImageSpec* level = ts->imagecache()->imagespec(name, 0, 0);
+    if (!level || !read_level(ts, h, *level, 0)) {
+      why = one_line(ts->geterror());
+      return nullptr;
+    }
     return h;
   });
 }
@@ -203,9 +349,9 @@ void texture_sample(void* s, void* handle, int nchannels, float u, float v, floa
 }
 
 const rt2::ImageCodec kCodec{can_encode,         encode,
-                             decode,             texture_system_create,
-                             texture_system_destroy, texture_open,
-                             texture_sample};
+                             probe,              decode,
+                             texture_system_create, texture_system_destroy,
+                             texture_open,       texture_sample};
 
 }  // namespace
 

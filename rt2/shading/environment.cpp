@@ -260,6 +260,14 @@ Environment Environment::from_image(int width, int height, std::vector<float> rg
   return env;
 }
 
+double Environment::bytes_for_image(int width, int height) {
+  // The argument's 3 floats and the source's vec4 per texel while converting; then the
+  // source and its halvings (a third of it) while prefiltering, and the specular levels.
+  const double texels = double(width) * double(height);
+  const double specular = 2.0 * kMaxSpecularWidth * kMaxSpecularWidth * sizeof(vec4);
+  return texels * double(3 * sizeof(float) + sizeof(vec4)) + specular;
+}
+
 Environment Environment::sky(const vec4& sun_direction, float intensity, float rotation_degrees) {
   const float length2 = dot(sun_direction, sun_direction);
   if (!(std::isfinite(length2) && length2 > 0.0f))

@@ -71,6 +71,9 @@ class Environment {
   // that does not match rgb, or a negative or non-finite intensity or rotation.
   static Environment from_image(int width, int height, std::vector<float> rgb, float intensity,
                                 float rotation_degrees);
+  // The most memory (bytes) from_image holds at once for a width x height image, its
+  // argument included: to check before an image file is read.
+  static double bytes_for_image(int width, int height);
   // A procedural clear sky, 256 x 128: a blue gradient from the zenith to a brighter
   // horizon, a darker brown ground below it, and a sun (a disk of 2 degrees' radius with a
   // soft edge and a glow) towards sun_direction, given in the map's frame (before the
