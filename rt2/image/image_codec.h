@@ -53,14 +53,15 @@ struct ImageCodec {
   std::string (*decode)(const std::string& path, const ImageHeader& header,
                         std::vector<float>& rgb, bool& srgb);
 
-  // Textures through OIIO's TextureSystem (rt2/shading/texture.h): mip-mapped (made on first use
+  // Textures through OIIO's TextureSystem (rt2/shading/texture.h): mip-mapped (in memory,
   // for files that have no mip levels), tiled and cached, filtered over a footprint.
   // OIIO's shared system (see image_codec_oiio.cpp for why); texture_system_destroy lets go
   // of it.
   void* (*texture_system_create)();
   void (*texture_system_destroy)(void* system);
   // A handle for the image file `path`, whose header probe() read as `header` (the reader
-  // it chose), checked to read; nullptr and `why` when it cannot be read.
+  // it chose), with every texel of every mip level read into the cache now, so that
+  // lookups neither read nor make them; nullptr and `why` when that fails.
   void* (*texture_open)(void* system, const std::string& path, const ImageHeader& header,
                         std::string& why);
   // The filtered RGB at texture coordinates (s, t) (OIIO's: (0, 0) the top-left corner,
@@ -68,6 +69,9 @@ struct ImageCodec {
   // (channels < 3) is replicated. Thread-safe.
   void (*texture_sample)(void* system, void* handle, int channels, float s, float t, float dsdx,
                          float dtdx, float dsdy, float dtdy, float* rgb);
+  // The tiles the cache has made so far, read from files or mip-mapped: for tests that
+  // check that lookups make none.
+  long long (*texture_tiles_made)(void* system);
 };
 
 // The codec, loaded on the first call (thread-safe). Throws rt2::Error when the library

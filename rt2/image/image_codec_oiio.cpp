@@ -314,13 +314,18 @@ void* texture_open(void* s, const std::string& path, const ImageHeader& header, 
       why = "the file changed while it was read";
       return nullptr;
     }
-    // Read every texel of the finest level now, so that a file truncated or corrupt past
-    // its header is an error here and not black texels (and a complaint per tile) while
-    // rendering; the cache keeps what it read.
-    const ImageSpec* level = ts->imagecache()->imagespec(name, 0, 0);
-    if (!level || !read_level(ts, h, *level, 0)) {
-      why = one_line(ts->geterror());
-      return nullptr;
+    // Every texel of every level now: a file truncated or corrupt past its header is an
+    // error here and not black texels (and a complaint per tile) while rendering, and the
+    // first frame neither reads the file nor makes the mip levels. The cache keeps them.
+    int levels = 0;
+    if (!ts->get_texture_info(h, nullptr, 0, OIIO::ustring("miplevels"), OIIO::TypeInt, &levels))
+      levels = 1;
+    for (int m = 0; m < levels; ++m) {
+      const ImageSpec* level = ts->imagecache()->imagespec(name, 0, m);
+      if (!level || !read_level(ts, h, *level, m)) {
+        why = one_line(ts->geterror());
+        return nullptr;
+      }
     }
     return h;
   });
@@ -348,10 +353,17 @@ void texture_sample(void* s, void* handle, int nchannels, float u, float v, floa
   rgb[2] = out[2];
 }
 
+long long texture_tiles_made(void* s) {
+  int tiles = 0;
+  system_of(s)->imagecache()->getattribute("stat:tiles_created", OIIO::TypeInt, &tiles);
+  return tiles;
+}
+
 const rt2::ImageCodec kCodec{can_encode,         encode,
                              probe,              decode,
                              texture_system_create, texture_system_destroy,
-                             texture_open,       texture_sample};
+                             texture_open,       texture_sample,
+                             texture_tiles_made};
 
 }  // namespace
 

@@ -107,4 +107,8 @@ vec4 TextureSet::sample(std::uint32_t index, float u, float v, float width) cons
   return vec4(rgb[0], rgb[1], rgb[2]);
 }
 
+long long TextureSet::tiles_made() const {
+  return system_ ? codec_->texture_tiles_made(system_) : 0;
+}
+
 }  // namespace rt2

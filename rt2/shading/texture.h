@@ -1,13 +1,13 @@
 // rt2/shading/texture.h — the images materials sample: OpenImageIO's TextureSystem behind rt2's
 // image codec library (rt2/image/image_codec.h), loaded only when a scene has textures.
 //
-// A TextureSet opens every TextureDesc of a scene once, when the scene is compiled, so that
-// a missing, unreadable or too large image is one error line before rendering ("wood.png:
-// ..."), not black pixels. Embedded images (glTF buffers) are written to a private
-// temporary folder first — OIIO's cache reads files — and removed with the set. Lookups are
-// filtered by OIIO over a footprint (trilinear on the mip levels OIIO makes on first use
-// for files without their own, anisotropic where the footprint is) and repeat outside
-// [0, 1].
+// A TextureSet opens every TextureDesc of a scene when the scene is compiled: a missing,
+// unreadable or too large image is one error line before rendering ("wood.png: ..."), not
+// black pixels, and every texel is read and every mip level made then, not in the first
+// frame. Embedded images (glTF buffers) are written to a private temporary folder first —
+// OIIO's cache reads files — and removed with the set. Lookups are filtered by OIIO over a
+// footprint (trilinear on the mip levels OIIO makes for files without their own,
+// anisotropic where the footprint is) and repeat outside [0, 1].
 #pragma once
 
 #include <cstdint>
@@ -44,6 +44,9 @@ class TextureSet {
   // Texture `index`'s linear RGB at (u, v), filtered over a square footprint `width` wide in
   // texture coordinates (0: the finest level, bilinear). Thread-safe.
   vec4 sample(std::uint32_t index, float u, float v, float width) const;
+  // The tiles OIIO's cache (which every set shares) has made so far, read from files or
+  // mip-mapped; 0 without textures. For tests: sample() makes none.
+  long long tiles_made() const;
 
  private:
   void release();
