@@ -87,7 +87,7 @@ std::string encode(const std::string& extension, const float* rgb, int width, in
 }
 
 // The readers rt2 lets read a file, and how a file shows it is theirs: its first bytes.
-// Targa has no signature; it is recognised by the extension .tga alone.
+// Targa has no signature (length 0); it is recognised by the extension .tga alone.
 struct Format {
   const char* name;       // OIIO's reader
   const char* signature;  // the file's first bytes
@@ -98,7 +98,7 @@ constexpr Format kFormats[] = {
     {"openexr", "\x76\x2f\x31\x01", 4}, {"hdr", "#?", 2},
     {"tiff", "II*\0", 4}, {"tiff", "MM\0*", 4}, {"tiff", "II+\0", 4}, {"tiff", "MM\0+", 4},
     {"bmp", "BM", 2}, {"pnm", "P1", 2}, {"pnm", "P2", 2}, {"pnm", "P3", 2}, {"pnm", "P4", 2},
-    {"pnm", "P5", 2}, {"pnm", "P6", 2}, {"pnm", "PF", 2}, {"pnm", "Pf", 2}};
+    {"pnm", "P5", 2}, {"pnm", "P6", 2}, {"pnm", "PF", 2}, {"pnm", "Pf", 2}, {"targa", "", 0}};
 
 // The reader for the regular file `path`, from its first bytes; "" and `why` otherwise.
 std::string format_of(const std::string& path, std::string& why) {
@@ -118,7 +118,8 @@ std::string format_of(const std::string& path, std::string& why) {
     return "";
   }
   for (const Format& f : kFormats)
-    if (got >= ssize_t(f.length) && std::memcmp(head, f.signature, f.length) == 0) return f.name;
+    if (f.length > 0 && got >= ssize_t(f.length) && std::memcmp(head, f.signature, f.length) == 0)
+      return f.name;
   const std::string ext = OIIO::Filesystem::extension(path);
   if (OIIO::Strutil::iequals(ext, ".tga")) return "targa";
   why = "not a PNG, JPEG, OpenEXR, Radiance HDR, TIFF, BMP, PNM or Targa image";
@@ -211,8 +212,11 @@ std::string decode_loudly(const std::string& path, const ImageHeader& header,
   const int take = std::min(spec.nchannels, 3);
   const std::size_t n = std::size_t(spec.width) * std::size_t(spec.height);
   rgb.assign(n * 3, 0.0f);
-  if (!in->read_image(0, 0, 0, take, TypeDesc::FLOAT, rgb.data(), 3 * sizeof(float)))
-    return one_line(in->geterror());
+  // OIIO 2.4's TIFF reader records a strip it cannot read (one past the end of the file)
+  // as an error but reports success, leaving black pixels: an error is a failure.
+  const bool read = in->read_image(0, 0, 0, take, TypeDesc::FLOAT, rgb.data(), 3 * sizeof(float));
+  const std::string error = in->geterror();
+  if (!read || !error.empty()) return one_line(error);
   for (std::size_t i = 0; i < n; ++i)
     for (int c = take; c < 3; ++c) rgb[3 * i + c] = rgb[3 * i + take - 1];
   const std::string cs = spec.get_string_attribute("oiio:ColorSpace");
@@ -278,25 +282,51 @@ void texture_system_destroy(void*) {}
 // Reads every texel of the level `miplevel` through the cache, in blocks of at most 4 MiB.
 bool read_level(OIIO::TextureSystem* ts, OIIO::TextureSystem::TextureHandle* h,
                 const ImageSpec& level, int miplevel) {
-  const std::int64_t nc = level.nchannels;
-  const std::int64_t cols = std::min<std::int64_t>(level.width, std::max<std::int64_t>(1, (1 << 22) / nc));
-  const std::int64_t rows = std::max<std::int64_t>(1, (1 << 22) / (cols * nc));
+  using I = std::int64_t;
+  const I nc = level.nchannels, w = level.width, ht = level.height;
+  const I cols = std::min<I>(w, std::max<I>(1, (1 << 22) / nc));
+  const I rows = std::max<I>(1, (1 << 22) / (cols * nc));
   std::vector<unsigned char> block(std::size_t(cols * rows * nc));
   OIIO::TextureOpt opt;
   OIIO::TextureSystem::Perthread* thread = ts->get_perthread_info();
-  for (std::int64_t y = 0; y < level.height; y += rows)
-    for (std::int64_t x = 0; x < level.width; x += cols)
-      if (!ts->get_texels(h, thread, opt, miplevel, int(level.x + x),
-                          int(level.x + std::min<std::int64_t>(level.width, x + cols)),
-                          int(level.y + y), int(level.y + std::min<std::int64_t>(level.height, y + rows)),
-                          0, 1, 0, int(nc), TypeDesc::UINT8, block.data()))
+  for (I y = 0; y < ht; y += rows)
+    for (I x = 0; x < w; x += cols) {
+      const int x0 = int(level.x + x), x1 = int(level.x + std::min(w, x + cols));
+      const int y0 = int(level.y + y), y1 = int(level.y + std::min(ht, y + rows));
+      if (!ts->get_texels(h, thread, opt, miplevel, x0, x1, y0, y1, 0, 1, 0, int(nc),
+                          TypeDesc::UINT8, block.data()))
         return false;
+    }
   return true;
+}
+
+// OIIO 2.4's TIFF reader reports success for a strip it cannot read (one past the end of
+// the file), recording an error and leaving black pixels, and the texture cache does not
+// look at that error: a TIFF texture's first channel is read once more, a band of rows at a
+// time, to find it. "" or the error.
+std::string tiff_read_error(const std::string& path, const ImageHeader& header) {
+  std::string why;
+  auto in = open_as(path, header.format, why);
+  if (!in) return why;
+  const ImageSpec& spec = in->spec();
+  if (!matches(spec, header)) return "the file changed while it was read";
+  const std::int64_t rows = std::max<std::int64_t>(1, (1 << 22) / header.width);
+  std::vector<float> band(std::size_t(rows * header.width));
+  for (std::int64_t y = 0; y < header.height; y += rows) {
+    const int end = int(std::min(header.height, y + rows));
+    const bool read = in->read_scanlines(0, 0, spec.y + int(y), spec.y + end, 0, 0, 1,
+                                         TypeDesc::FLOAT, band.data());
+    why = in->geterror();
+    if (!read || !why.empty()) return why.empty() ? "cannot read its pixels" : why;
+  }
+  return "";
 }
 
 void* texture_open(void* s, const std::string& path, const ImageHeader& header, std::string& why) {
   OIIO::TextureSystem* ts = system_of(s);
   return quietly([&]() -> void* {
+    (void)ts->geterror();  // errors left by an earlier texture
+    (void)ts->imagecache()->geterror();
     const OIIO::ustring name(path);
     const ImageInput::Creator creator = creator_of(header.format);
     // replacing a file of this name read before (by an earlier scene): it may have changed
@@ -317,13 +347,24 @@ void* texture_open(void* s, const std::string& path, const ImageHeader& header, 
     // Every texel of every level now: a file truncated or corrupt past its header is an
     // error here and not black texels (and a complaint per tile) while rendering, and the
     // first frame neither reads the file nor makes the mip levels. The cache keeps them.
+    // An error recorded while reading is a failure, even when the read reports success
+    // (see decode).
     int levels = 0;
     if (!ts->get_texture_info(h, nullptr, 0, OIIO::ustring("miplevels"), OIIO::TypeInt, &levels))
       levels = 1;
     for (int m = 0; m < levels; ++m) {
       const ImageSpec* level = ts->imagecache()->imagespec(name, 0, m);
-      if (!level || !read_level(ts, h, *level, m)) {
-        why = one_line(ts->geterror());
+      const bool read = level && read_level(ts, h, *level, m);
+      why = ts->geterror() + ts->imagecache()->geterror();
+      if (!read || !why.empty()) {
+        why = one_line(why);
+        return nullptr;
+      }
+    }
+    if (header.format == "tiff") {
+      why = tiff_read_error(path, header);
+      if (!why.empty()) {
+        why = one_line(why);
         return nullptr;
       }
     }
