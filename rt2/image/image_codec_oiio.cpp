@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iterator>
 #include <memory>
@@ -229,8 +230,15 @@ std::string decode_loudly(const std::string& path, const ImageHeader& header,
 // Runs `f` with the process's stderr pointed at /dev/null: libpng and libjpeg print their
 // own complaints there before OIIO reports the error rt2 turns into its one line. Only for
 // what runs before or after rendering, on one thread (file descriptors are per process).
+// With RT2_IMAGE_STDERR=1 in the environment stderr stays: the libraries' messages, and a
+// sanitizer's report of a crash inside them (scripts/fuzz sets it), are seen.
 template <typename F>
 auto quietly(F&& f) {
+  static const bool keep = [] {
+    const char* v = std::getenv("RT2_IMAGE_STDERR");
+    return v && std::string(v) == "1";
+  }();
+  if (keep) return f();
   std::fflush(stderr);
   const int saved = ::dup(2);
   const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
@@ -285,7 +293,7 @@ bool read_level(OIIO::TextureSystem* ts, OIIO::TextureSystem::TextureHandle* h,
   using I = std::int64_t;
   const I nc = level.nchannels, w = level.width, ht = level.height;
   const I cols = std::min<I>(w, std::max<I>(1, (1 << 22) / nc));
-  const I rows = std::max<I>(1, (1 << 22) / (cols * nc));
+  const I rows = std::min<I>(ht, std::max<I>(1, (1 << 22) / (cols * nc)));
   std::vector<unsigned char> block(std::size_t(cols * rows * nc));
   OIIO::TextureOpt opt;
   OIIO::TextureSystem::Perthread* thread = ts->get_perthread_info();
@@ -303,19 +311,29 @@ bool read_level(OIIO::TextureSystem* ts, OIIO::TextureSystem::TextureHandle* h,
 // OIIO 2.4's TIFF reader reports success for a strip it cannot read (one past the end of
 // the file), recording an error and leaving black pixels, and the texture cache does not
 // look at that error: a TIFF texture's first channel is read once more, a band of rows at a
-// time, to find it. "" or the error.
+// time (of whole tiles: OIIO 2.4's read_scanlines divides by zero on a tiled TIFF), to find
+// it. "" or the error.
 std::string tiff_read_error(const std::string& path, const ImageHeader& header) {
   std::string why;
   auto in = open_as(path, header.format, why);
   if (!in) return why;
   const ImageSpec& spec = in->spec();
   if (!matches(spec, header)) return "the file changed while it was read";
-  const std::int64_t rows = std::max<std::int64_t>(1, (1 << 22) / header.width);
-  std::vector<float> band(std::size_t(rows * header.width));
+  const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
+  const std::int64_t width = tiled ? (header.width + spec.tile_width - 1) / spec.tile_width *
+                                         std::int64_t(spec.tile_width)
+                                   : header.width;
+  const std::int64_t unit = tiled ? spec.tile_height : 1;
+  const std::int64_t rows = std::min<std::int64_t>(
+      (header.height + unit - 1) / unit * unit,
+      unit * std::max<std::int64_t>(1, (1 << 22) / (width * unit)));
+  std::vector<float> band(std::size_t(rows * width));
   for (std::int64_t y = 0; y < header.height; y += rows) {
-    const int end = int(std::min(header.height, y + rows));
-    const bool read = in->read_scanlines(0, 0, spec.y + int(y), spec.y + end, 0, 0, 1,
-                                         TypeDesc::FLOAT, band.data());
+    const int y0 = spec.y + int(y), y1 = spec.y + int(std::min(header.height, y + rows));
+    const bool read =
+        tiled ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, y0, y1, spec.z, spec.z + 1, 0, 1,
+                               TypeDesc::FLOAT, band.data())
+              : in->read_scanlines(0, 0, y0, y1, 0, 0, 1, TypeDesc::FLOAT, band.data());
     why = in->geterror();
     if (!read || !why.empty()) return why.empty() ? "cannot read its pixels" : why;
   }

@@ -6,10 +6,10 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "rt2/base/error.h"
+#include "rt2/image/file_screen.h"
 #include "rt2/image/image_codec.h"
 #include "rt2/image/output_file.h"
 #include "rt2/image/srgb.h"
@@ -98,29 +98,6 @@ std::string header_problem(const ImageHeader& h, std::uint64_t max_pixels) {
   return "";
 }
 
-// The scans (SOS segments) of the file `path` if it is a JPEG (0 otherwise), counted up to
-// `most` + 1 by walking its marker segments; entropy-coded data is skipped to the next
-// marker (0xFF followed by neither 0 nor a restart marker).
-int jpeg_scans(const std::string& path, int most) {
-  std::ifstream in(path, std::ios::binary);
-  std::streambuf* bytes = in.rdbuf();
-  constexpr int kEnd = std::char_traits<char>::eof();
-  if (bytes->sbumpc() != 0xFF || bytes->sbumpc() != 0xD8 || bytes->sgetc() != 0xFF) return 0;
-  int scans = 0;
-  for (int c = bytes->sbumpc(); c != kEnd; c = bytes->sbumpc()) {
-    if (c != 0xFF) continue;
-    int marker = bytes->sbumpc();
-    while (marker == 0xFF) marker = bytes->sbumpc();
-    if (marker == kEnd || marker == 0xD9) break;                       // EOI
-    if (marker == 0 || marker == 1 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // no length
-    const int hi = bytes->sbumpc(), lo = bytes->sbumpc();
-    if (lo == kEnd) break;
-    if (marker == 0xDA && ++scans > most) break;
-    bytes->pubseekoff((hi << 8 | lo) - 2, std::ios::cur);
-  }
-  return scans;
-}
-
 }  // namespace
 
 ImageHeader read_image_header(const std::string& path, std::uint64_t max_pixels,
@@ -130,11 +107,8 @@ ImageHeader read_image_header(const std::string& path, std::uint64_t max_pixels,
   if (S_ISDIR(st.st_mode)) throw Error(name + ": is a directory");
   if (!S_ISREG(st.st_mode)) throw Error(name + ": not a regular file (a device or a pipe)");
   if (st.st_size == 0) throw Error(name + ": is empty");
-  // libjpeg reads every scan of a progressive JPEG over the whole image as the file is
-  // opened (a progressive file needs about ten): a few kilobytes of empty scans would
-  // multiply that work a thousandfold.
-  if (jpeg_scans(path, kMaxJpegScans) > kMaxJpegScans)
-    throw Error(name + ": a JPEG of more than " + std::to_string(kMaxJpegScans) + " scans");
+  const std::string screened = screen_image_file(path, std::uint64_t(st.st_size));
+  if (!screened.empty()) throw Error(name + ": " + screened);
   ImageHeader header;
   const std::string why = image_codec().probe(path, header);
   if (!why.empty()) throw Error(name + ": cannot read image: " + why);

@@ -32,20 +32,19 @@ bool is_linear_format(const std::string& path);
 // Display formats take `display`'s exposure and curve first; float formats ignore it.
 void write_image(const std::string& path, const Image& image, const Display& display = {});
 
-// The most channels an image rt2 reads may have, and the most scans a JPEG may have.
+// The most channels an image rt2 reads may have.
 inline constexpr int kMaxImageChannels = 64;
-inline constexpr int kMaxJpegScans = 64;
 // read_image's default: no limit on an image's pixels.
 inline constexpr std::uint64_t kNoPixelLimit = UINT64_MAX;
 
 // What the image file `path` declares, read and checked from its header alone: no pixel is
 // decoded and nothing of the image's size is allocated. Throws rt2::Error "NAME: reason",
 // NAME being how the user knows the file (its path, or "x.glb:image 2"), unless it is a
-// regular file (not a directory, device or pipe, which may never end), not empty, in a
-// format image_codec.h's probe reads, flat (not deep) and 2D, with 1 to kMaxImageChannels
-// channels, at most kMaxSubimages subimages and kMaxMipLevels levels (and kMaxJpegScans
-// scans), windows within 2^29 pixels of the origin and at most 2^30 on a side, and at most
-// `max_pixels` pixels:
+// regular file (not a directory, device or pipe, which may never end), not empty, passes
+// file_screen.h's checks, is in a format image_codec.h's probe reads, flat (not deep) and
+// 2D, with 1 to kMaxImageChannels channels, at most kMaxSubimages subimages and
+// kMaxMipLevels levels, windows within 2^29 pixels of the origin and at most 2^30 on a
+// side, and at most `max_pixels` pixels:
 //   big.png: 20000 x 20000 pixels is more than the limit of 268435456 (--max-texture-pixels raises it)
 ImageHeader read_image_header(const std::string& path, std::uint64_t max_pixels,
                               const std::string& name);

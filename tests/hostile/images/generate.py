@@ -201,8 +201,9 @@ def exr(width, height, channels="BGR", x0=0, y0=0, extra=b"", deep=False, offset
     for i in range(written):
         offsets_written.append(offsets(i) if offsets else start + len(chunks))
         chunks += struct.pack("<ii", y0 + i * per_chunk, len(line)) + line
+    listed = min(declared, cut // 8 + 1) if cut else declared  # a cut file: what remains
     table = b"".join(struct.pack("<Q", offsets_written[min(i, written - 1)])
-                     for i in range(declared))
+                     for i in range(listed))
     data = head + table + chunks
     return data[:cut] if cut else data
 
@@ -211,10 +212,25 @@ def exr_cases():
     both("exr_3x2", "exr_3x2.exr", exr(3, 2), ok=True)
     both("exr_declares_20000x20000", "exr_declares_20000x20000.exr",
          exr(20000, 20000, piz=True), f"20000 x 20000 pixels {LIMIT}")
-    # OpenEXR reads the offset table, 100000 lines past the end of the file, when it opens it
+    # Offset tables longer than the file (OpenEXR reads them as it opens the file, and
+    # stops at its end): 100000 lines, 2^30 lines (beyond OpenEXR's window limit), and a
+    # ripmap of 1 x 1 tiles over 2^20 x 2^20 (beyond its tile limit)
     both("exr_declares_100000x100000", "exr_declares_100000x100000.exr",
-         exr(100000, 100000, cut=2000),
-         "Unexpected end of file")
+         exr(100000, 100000, cut=2000), "Unexpected end of file")
+    both("exr_declares_2_30_lines", "exr_declares_2_30_lines.exr", exr(4, 1 << 30, cut=2000),
+         "Invalid display window")
+    tiles = exr_attribute("tiles", "tiledesc", struct.pack("<IIB", 1, 1, 2))  # ripmap
+    data = bytearray(exr(1 << 20, 1 << 20, extra=tiles, cut=3000))
+    data[5] |= 0x02  # the version's "tiled" flag (0x200)
+    both("exr_tiled_ripmap_of_2_20", "exr_tiled_ripmap_of_2_20.exr", bytes(data),
+         "Maximum number of tiles exceeded")
+    # Found by fuzzing: an attribute declaring 1.9 GB (OpenEXR allocated it, 7 s, then
+    # found the end of the file)
+    data = exr(2, 2)
+    i = data.find(b"screenWindowWidth")  # and "float", 4 bytes, the value: 32 bytes
+    data = data[:i] + b"screename\0string\0" + struct.pack("<I", 0x6F6C6600) + data[i + 32:]
+    both("exr_attribute_of_1_9_gb", "exr_attribute_of_1_9_gb.exr", data,
+         "attribute 'screename' declares 1869374976 bytes, more than the file holds")
     # OpenEXR refuses it first (its own limit on windows)
     both("exr_data_window_far", "exr_data_window_far.exr", exr(4, 4, x0=1 << 30, y0=-(1 << 30)),
          "Invalid display window")
@@ -277,10 +293,11 @@ def tiff_ifd(entries, next_offset):
     return out + struct.pack("<I", next_offset)
 
 
-def tiff(width, height, pages=1, strip_offset=None, loop=False):
-    """An 8-bit grey, uncompressed TIFF of `pages` pages, each one strip."""
+def tiff(width, height, pages=1, strip_offset=None, loop=False, tile=0):
+    """An 8-bit grey, uncompressed TIFF of `pages` pages, each one strip, or one tile of
+    `tile` x `tile` (covering at most that much of the image)."""
     data = b"II*\0" + struct.pack("<I", 8)
-    n = min(width * height, 4096)  # a lying header declares more
+    n = tile * tile if tile else min(width * height, 4096)  # a lying header declares more
     pixels = (bytes(range(256)) * (n // 256 + 1))[:n]
     ifd_size = 2 + 10 * 12 + 4
     for page in range(pages):
@@ -290,7 +307,12 @@ def tiff(width, height, pages=1, strip_offset=None, loop=False):
         next_offset = ifd_at if loop else (0 if last else strip_at + len(pixels))
         entries = [(256, 4, 1, width), (257, 4, 1, height), (258, 3, 1, 8), (259, 3, 1, 1),
                    (262, 3, 1, 1), (273, 4, 1, strip_offset or strip_at), (277, 3, 1, 1),
-                   (278, 4, 1, height), (279, 4, 1, min(width * height, 0xFFFFFFFF)), (284, 3, 1, 1)]
+                   (278, 4, 1, height), (279, 4, 1, min(width * height, 0xFFFFFFFF)),
+                   (284, 3, 1, 1)]
+        if tile:
+            entries = entries[:5] + [(277, 3, 1, 1), (284, 3, 1, 1), (322, 3, 1, tile),
+                                     (323, 3, 1, tile), (324, 4, 1, strip_at),
+                                     (325, 4, 1, len(pixels))]
         data += tiff_ifd(entries, next_offset) + pixels
     return data
 
@@ -307,6 +329,9 @@ def tiff_cases():
     # libtiff notices the loop: the first page is read
     both("tiff_directory_loop", "tiff_directory_loop.tif", tiff(2, 2, loop=True), ok=True)
     both("tiff_zero_width", "tiff_zero_width.tif", tiff(0, 4), "")
+    # Found by fuzzing: OIIO 2.4's read_scanlines divides by zero on any tiled TIFF (rt2
+    # used it to check a TIFF texture's reads; it reads whole tiles now)
+    both("tiff_tiled_13x9", "tiff_tiled_13x9.tif", tiff(13, 9, tile=16), ok=True)
 
 
 # ---- BMP, PNM, Targa, other files -----------------------------------------------------------

@@ -1,0 +1,97 @@
+// rt2/image/file_screen.cpp — the byte-level checks of image files (see file_screen.h).
+#include "rt2/image/file_screen.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+namespace rt2 {
+
+namespace {
+
+constexpr int kEnd = std::char_traits<char>::eof();
+
+// The scans (SOS segments) of the JPEG in `bytes` (after its first two bytes), counted up
+// to `most` + 1 by walking its marker segments; entropy-coded data is skipped to the next
+// marker (0xFF followed by neither 0 nor a restart marker).
+int jpeg_scans(std::streambuf& bytes, int most) {
+  int scans = 0;
+  for (int c = bytes.sbumpc(); c != kEnd; c = bytes.sbumpc()) {
+    if (c != 0xFF) continue;
+    int marker = bytes.sbumpc();
+    while (marker == 0xFF) marker = bytes.sbumpc();
+    if (marker == kEnd || marker == 0xD9) break;                                 // EOI
+    if (marker == 0 || marker == 1 || (marker >= 0xD0 && marker <= 0xD7)) continue;  // no length
+    const int hi = bytes.sbumpc(), lo = bytes.sbumpc();
+    if (lo == kEnd) break;
+    if (marker == 0xDA && ++scans > most) break;
+    bytes.pubseekoff((hi << 8 | lo) - 2, std::ios::cur);
+  }
+  return scans;
+}
+
+// Little-endian integers of an OpenEXR header; false at the end of the file.
+bool read_le(std::streambuf& bytes, std::uint32_t& v) {
+  unsigned char b[4];
+  if (bytes.sgetn(reinterpret_cast<char*>(b), 4) != 4) return false;
+  v = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+      std::uint32_t(b[3]) << 24;
+  return true;
+}
+
+// A 0-terminated string of at most `most` characters; false if longer or at the end.
+bool read_name(std::streambuf& bytes, std::size_t most, std::string& s) {
+  s.clear();
+  for (int c = bytes.sbumpc(); c != 0; c = bytes.sbumpc()) {
+    if (c == kEnd || s.size() == most) return false;
+    s += char(c);
+  }
+  return true;
+}
+
+// The OpenEXR file in `bytes` (after its 4-byte magic number) of `file_bytes` bytes: every
+// attribute of every part's header fits in the file.
+std::string screen_exr(std::streambuf& bytes, std::uint64_t file_bytes) {
+  std::uint32_t version = 0;
+  if (!read_le(bytes, version)) return "";
+  const bool multipart = version & 0x1000;
+  const std::size_t most = (version & 0x400) ? 255 : 31;  // long names
+  std::string name, type;
+  for (;;) {  // parts
+    if (multipart && bytes.sgetc() == 0) break;  // the empty header that ends the list
+    for (;;) {  // attributes
+      if (!read_name(bytes, most, name) || (!name.empty() && !read_name(bytes, most, type)))
+        return "";  // malformed: OpenEXR refuses it
+      if (name.empty()) break;
+      std::uint32_t size = 0;
+      if (!read_le(bytes, size)) return "";
+      const auto at = std::uint64_t(bytes.pubseekoff(0, std::ios::cur));
+      if (size > file_bytes - std::min(at, file_bytes))
+        return "its OpenEXR attribute '" + name + "' declares " + std::to_string(size) +
+               " bytes, more than the file holds";
+      bytes.pubseekoff(size, std::ios::cur);
+    }
+    if (!multipart) break;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string screen_image_file(const std::string& path, std::uint64_t file_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::streambuf& bytes = *in.rdbuf();
+  char magic[4] = {};
+  if (bytes.sgetn(magic, 4) != 4) return "";
+  if (std::memcmp(magic, "\xff\xd8\xff", 3) == 0) {
+    bytes.pubseekoff(2, std::ios::beg);
+    if (jpeg_scans(bytes, kMaxJpegScans) > kMaxJpegScans)
+      return "a JPEG of more than " + std::to_string(kMaxJpegScans) + " scans";
+  } else if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) {
+    return screen_exr(bytes, file_bytes);
+  }
+  return "";
+}
+
+}  // namespace rt2
