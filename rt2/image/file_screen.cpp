@@ -50,6 +50,13 @@ bool read_name(std::streambuf& bytes, std::size_t most, std::string& s) {
   return true;
 }
 
+// `s` with every byte outside printable ASCII as '?', for a one-line message.
+std::string printable(std::string s) {
+  for (char& c : s)
+    if (c < 0x20 || c > 0x7E) c = '?';
+  return s;
+}
+
 // The OpenEXR file in `bytes` (after its 4-byte magic number) of `file_bytes` bytes: every
 // attribute of every part's header fits in the file.
 std::string screen_exr(std::streambuf& bytes, std::uint64_t file_bytes) {
@@ -68,7 +75,7 @@ std::string screen_exr(std::streambuf& bytes, std::uint64_t file_bytes) {
       if (!read_le(bytes, size)) return "";
       const auto at = std::uint64_t(bytes.pubseekoff(0, std::ios::cur));
       if (size > file_bytes - std::min(at, file_bytes))
-        return "its OpenEXR attribute '" + name + "' declares " + std::to_string(size) +
+        return "its OpenEXR attribute '" + printable(name) + "' declares " + std::to_string(size) +
                " bytes, more than the file holds";
       bytes.pubseekoff(size, std::ios::cur);
     }

@@ -36,7 +36,9 @@ using rt2::kMaxSubimages;
 // OIIO's messages on one line, and short: a broken file can make it repeat the same
 // complaint for every tile it tried.
 std::string one_line(std::string s) {
-  std::replace(s.begin(), s.end(), '\n', ' ');
+  // control characters too: a message may quote bytes of the file
+  for (char& c : s)
+    if ((c >= 0 && c < 0x20) || c == 0x7F) c = ' ';
   while (!s.empty() && s.back() == ' ') s.pop_back();
   if (s.size() > 200) s = s.substr(0, 200) + " ...";
   return s.empty() ? "unknown error" : s;

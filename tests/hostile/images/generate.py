@@ -226,11 +226,15 @@ def exr_cases():
          "Maximum number of tiles exceeded")
     # Found by fuzzing: an attribute declaring 1.9 GB (OpenEXR allocated it, 7 s, then
     # found the end of the file)
-    data = exr(2, 2)
-    i = data.find(b"screenWindowWidth")  # and "float", 4 bytes, the value: 32 bytes
-    data = data[:i] + b"screename\0string\0" + struct.pack("<I", 0x6F6C6600) + data[i + 32:]
+    base = exr(2, 2)
+    i = base.find(b"screenWindowWidth")  # and "float", 4 bytes, the value: 32 bytes
+    data = base[:i] + b"screename\0string\0" + struct.pack("<I", 0x6F6C6600) + base[i + 32:]
     both("exr_attribute_of_1_9_gb", "exr_attribute_of_1_9_gb.exr", data,
          "attribute 'screename' declares 1869374976 bytes, more than the file holds")
+    # Found by fuzzing: rt2's message quoted the attribute's name, a line break
+    data = base[:i] + b"\n\0\0" + struct.pack("<I", 16778241) + base[i + 32:]
+    both("exr_attribute_named_line_break", "exr_attribute_named_line_break.exr", data,
+         "attribute '?' declares 16778241 bytes")
     # OpenEXR refuses it first (its own limit on windows)
     both("exr_data_window_far", "exr_data_window_far.exr", exr(4, 4, x0=1 << 30, y0=-(1 << 30)),
          "Invalid display window")
