@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <utility>
 
 namespace rt2 {
 
@@ -57,13 +58,41 @@ std::string printable(std::string s) {
   return s;
 }
 
-// The OpenEXR file in `bytes` (after its 4-byte magic number) of `file_bytes` bytes: every
-// attribute of every part's header fits in the file.
+// The bytes OpenEXR 3.1 reads for the value of an attribute of type `type` and declared
+// size `size`: most types read a fixed number whatever the size says, a channel list reads
+// to its end marker (-1 here: walk it), the others read `size`.
+std::int64_t exr_value_bytes(const std::string& type, std::uint32_t size) {
+  static const std::pair<const char*, int> kFixed[] = {
+      {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1},
+      {"deepImageState", 1}, {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4},
+      {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64},
+      {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+  for (const auto& [name, bytes] : kFixed)
+    if (type == name) return bytes;
+  if (type == "chlist") return -1;
+  if (type == "floatvector") return size / 4 * 4;
+  return size;
+}
+
+// Skips a channel list as OpenEXR reads it: entries of a name and 16 bytes, to an empty name.
+bool skip_channel_list(std::streambuf& bytes) {
+  std::string name;
+  for (;;) {
+    if (!read_name(bytes, 255, name)) return false;
+    if (name.empty()) return true;
+    bytes.pubseekoff(16, std::ios::cur);
+  }
+}
+
+// The OpenEXR file in `bytes` (after its 4-byte magic number) of `file_bytes` bytes, read
+// as OpenEXR 3.1 reads its headers: every attribute's declared size fits in the file.
 std::string screen_exr(std::streambuf& bytes, std::uint64_t file_bytes) {
   std::uint32_t version = 0;
   if (!read_le(bytes, version)) return "";
   const bool multipart = version & 0x1000;
-  const std::size_t most = (version & 0x400) ? 255 : 31;  // long names
+  // OpenEXR reads names of up to 255 characters whatever the version's long-names flag says
+  constexpr std::size_t most = 255;
   std::string name, type;
   for (;;) {  // parts
     if (multipart && bytes.sgetc() == 0) break;  // the empty header that ends the list
@@ -77,10 +106,25 @@ std::string screen_exr(std::streambuf& bytes, std::uint64_t file_bytes) {
       if (size > file_bytes - std::min(at, file_bytes))
         return "its OpenEXR attribute '" + printable(name) + "' declares " + std::to_string(size) +
                " bytes, more than the file holds";
-      bytes.pubseekoff(size, std::ios::cur);
+      const std::int64_t value = exr_value_bytes(type, size);
+      if (value < 0 ? !skip_channel_list(bytes) : bytes.pubseekoff(value, std::ios::cur) < 0)
+        return "";
     }
     if (!multipart) break;
   }
+  return "";
+}
+
+// The BMP file in `bytes`: not run-length compressed. OIIO 2.4's reader decodes such a file
+// into palette indices whatever its bits per pixel say, and a 24-bit one then crashed it.
+std::string screen_bmp(std::streambuf& bytes) {
+  bytes.pubseekoff(14, std::ios::beg);
+  std::uint32_t info = 0, compression = 0;
+  if (!read_le(bytes, info) || info < 40) return "";  // OS/2 headers have no compression
+  bytes.pubseekoff(14 + 16, std::ios::beg);
+  if (!read_le(bytes, compression)) return "";
+  if (compression == 1 || compression == 2)
+    return "a run-length compressed BMP, which rt2 does not read";
   return "";
 }
 
@@ -97,6 +141,8 @@ std::string screen_image_file(const std::string& path, std::uint64_t file_bytes)
       return "a JPEG of more than " + std::to_string(kMaxJpegScans) + " scans";
   } else if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) {
     return screen_exr(bytes, file_bytes);
+  } else if (std::memcmp(magic, "BM", 2) == 0) {
+    return screen_bmp(bytes);
   }
   return "";
 }

@@ -3,6 +3,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -75,9 +76,19 @@ std::string header_problem(const ImageHeader& h, std::uint64_t max_pixels) {
   if (h.deep) return "a deep image (several samples per pixel), which rt2 does not read";
   if (h.depth > 1) return "a volume of " + std::to_string(h.depth) + " slices, not a 2D image";
   if (h.width < 1 || h.height < 1) return "the image is empty (" + size(h.width, h.height) + ")";
-  if (std::uint64_t(h.width) * std::uint64_t(h.height) > max_pixels)
-    return size(h.width, h.height) + " is more than the limit of " + std::to_string(max_pixels) +
-           " (--max-texture-pixels raises it)";
+  const auto limit = " is more than the limit of " + std::to_string(max_pixels) +
+                     " (--max-texture-pixels raises it)";
+  const std::uint64_t area = std::uint64_t(h.width) * std::uint64_t(h.height);
+  if (area > max_pixels) return size(h.width, h.height) + limit;
+  // The display window is what texture coordinates span and what OIIO makes mip levels of
+  // (a 3 x 2 image in a display window of 7077891 x 16777217 overflowed its tile count).
+  const std::uint64_t display = h.full_width > 0 && h.full_height > 0
+                                    ? std::uint64_t(h.full_width) * std::uint64_t(h.full_height)
+                                    : 0;
+  if (display > max_pixels)
+    return "its display window of " + size(h.full_width, h.full_height) + limit;
+  if (std::max(area, display) > kMostImagePixels)
+    return "more than 2^36 pixels, the most rt2 reads whatever the limit";
   if (h.channels < 1 || h.channels > kMaxImageChannels)
     return std::to_string(h.channels) + " channels (1 to " + std::to_string(kMaxImageChannels) +
            " are read)";

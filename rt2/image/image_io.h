@@ -32,8 +32,10 @@ bool is_linear_format(const std::string& path);
 // Display formats take `display`'s exposure and curve first; float formats ignore it.
 void write_image(const std::string& path, const Image& image, const Display& display = {});
 
-// The most channels an image rt2 reads may have.
+// The most channels an image rt2 reads may have, and the most pixels in either of its
+// windows whatever the pixel limit.
 inline constexpr int kMaxImageChannels = 64;
+inline constexpr std::uint64_t kMostImagePixels = std::uint64_t(1) << 36;
 // read_image's default: no limit on an image's pixels.
 inline constexpr std::uint64_t kNoPixelLimit = UINT64_MAX;
 
@@ -44,7 +46,8 @@ inline constexpr std::uint64_t kNoPixelLimit = UINT64_MAX;
 // file_screen.h's checks, is in a format image_codec.h's probe reads, flat (not deep) and
 // 2D, with 1 to kMaxImageChannels channels, at most kMaxSubimages subimages and
 // kMaxMipLevels levels, windows within 2^29 pixels of the origin and at most 2^30 on a
-// side, and at most `max_pixels` pixels:
+// side, and at most `max_pixels` (and kMostImagePixels) pixels in its data window (the
+// pixels stored) and in its display window:
 //   big.png: 20000 x 20000 pixels is more than the limit of 268435456 (--max-texture-pixels raises it)
 ImageHeader read_image_header(const std::string& path, std::uint64_t max_pixels,
                               const std::string& name);

@@ -176,7 +176,7 @@ def exr_attribute(name, kind, value):
 
 
 def exr(width, height, channels="BGR", x0=0, y0=0, extra=b"", deep=False, offsets=None,
-        cut=None, piz=False):
+        cut=None, piz=False, display=None):
     """A scanline OpenEXR of half channels, uncompressed with one line per chunk, or
     declaring PIZ compression (32 lines per chunk: a small offset table for a tall image)."""
     chlist = b"".join(c.encode() + b"\0" + struct.pack("<iBBBBii", 1, 0, 0, 0, 0, 1, 1)
@@ -185,7 +185,9 @@ def exr(width, height, channels="BGR", x0=0, y0=0, extra=b"", deep=False, offset
     header = (exr_attribute("channels", "chlist", chlist) +
               exr_attribute("compression", "compression", b"\4" if piz else b"\0") +
               exr_attribute("dataWindow", "box2i", box) +
-              exr_attribute("displayWindow", "box2i", box) +
+              exr_attribute("displayWindow", "box2i",
+                            struct.pack("<iiii", 0, 0, display[0] - 1, display[1] - 1)
+                            if display else box) +
               exr_attribute("lineOrder", "lineOrder", b"\0") +
               exr_attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0)) +
               exr_attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) +
@@ -231,6 +233,20 @@ def exr_cases():
     data = base[:i] + b"screename\0string\0" + struct.pack("<I", 0x6F6C6600) + base[i + 32:]
     both("exr_attribute_of_1_9_gb", "exr_attribute_of_1_9_gb.exr", data,
          "attribute 'screename' declares 1869374976 bytes, more than the file holds")
+    # Found by fuzzing: the same with a name of 41 characters, without the version's
+    # long-names flag (OpenEXR reads names of up to 255 whatever the flag; rt2's screen
+    # stopped at 31 and let the file through)
+    data = base[:i] + b"x" * 41 + b"\0string\0" + struct.pack("<I", 1746953235) + base[i + 32:]
+    both("exr_attribute_long_name_of_1_7_gb", "exr_attribute_long_name_of_1_7_gb.exr", data,
+         "declares 1746953235 bytes, more than the file holds")
+    # Found by fuzzing: OpenEXR reads a channel list to its end marker and most types'
+    # fixed sizes, whatever the declared size says; a screen that skipped declared sizes
+    # lost its place and missed the 1.9 GB attribute after a channel list declaring 0 bytes
+    j = base.find(b"chlist\0") + 7
+    data = base[:j] + struct.pack("<I", 0) + base[j + 4:i] + b"comments\0string\0" + \
+        struct.pack("<I", 1869374976) + base[i + 32:]
+    both("exr_channel_list_size_lies", "exr_channel_list_size_lies.exr", data,
+         "attribute 'comments' declares 1869374976 bytes")
     # Found by fuzzing: rt2's message quoted the attribute's name, a line break
     data = base[:i] + b"\n\0\0" + struct.pack("<I", 16778241) + base[i + 32:]
     both("exr_attribute_named_line_break", "exr_attribute_named_line_break.exr", data,
@@ -238,6 +254,11 @@ def exr_cases():
     # OpenEXR refuses it first (its own limit on windows)
     both("exr_data_window_far", "exr_data_window_far.exr", exr(4, 4, x0=1 << 30, y0=-(1 << 30)),
          "Invalid display window")
+    # Found by fuzzing: 3 x 2 pixels in a display window of 7077891 x 16777217, where OIIO's
+    # texture cache makes its mip levels: its tile count overflowed and an assertion aborted
+    both("exr_display_window_of_7077891x16777217", "exr_display_window_of_7077891x16777217.exr",
+         exr(3, 2, display=(7077891, 16777217)),
+         f"its display window of 7077891 x 16777217 pixels {LIMIT}")
     both("exr_data_window_off_origin", "exr_data_window_off_origin.exr",
          exr(4, 4, x0=600000000, y0=5), "is beyond 2^29 pixels from the origin")
     both("exr_1000_channels", "exr_1000_channels.exr", exr(2, 2, channels=[
@@ -340,8 +361,9 @@ def tiff_cases():
 
 # ---- BMP, PNM, Targa, other files -----------------------------------------------------------
 
-def bmp(width, height, pixels=b""):
-    info = struct.pack("<IiiHHIIiiII", 40, width, height, 1, 24, 0, len(pixels), 2835, 2835, 0, 0)
+def bmp(width, height, pixels=b"", bpp=24, compression=0):
+    info = struct.pack("<IiiHHIIiiII", 40, width, height, 1, bpp, compression, len(pixels), 2835,
+                       2835, 0, 0)
     head = b"BM" + struct.pack("<IHHI", 14 + len(info) + len(pixels), 0, 0, 14 + len(info))
     return head + info + pixels
 
@@ -355,6 +377,9 @@ def other_cases():
     # OIIO's BMP reader compares the size with the file's first
     both("bmp_declares_100000x100000", "bmp_declares_100000x100000.bmp",
          bmp(100000, -100000, bytes(64)), "Invalid image size 100000 x 100000")
+    # Found by fuzzing: 24 bits per pixel and RLE4 compression crashed OIIO 2.4's reader
+    both("bmp_rle4_24_bits", "bmp_rle4_24_bits.bmp", bmp(2, 2, b"\x02\x34\x00\x00\x00\x01",
+         compression=2), "a run-length compressed BMP, which rt2 does not read")
     both("ppm_declares_100000x100000", "ppm_declares_100000x100000.ppm",
          b"P6\n100000 100000\n255\n" + bytes(64), f"100000 x 100000 pixels {LIMIT}")
     both("ppm_truncated", "ppm_truncated.ppm", b"P6\n16 16\n255\n" + bytes(100), "cannot read")

@@ -269,6 +269,14 @@ TEST(Texture, LookupsAfterOpeningMakeNoTile) {
   EXPECT_EQ(set.tiles_made(), made);
 }
 
+// Under ASan each band of 64 rows OIIO 2.4's texture cache reads from a file costs a 64 MiB
+// allocation that ASan poisons: the tall texture is shorter there.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kTall = 2000;
+#else
+constexpr int kTall = 100000;
+#endif
+
 // Images one texel wide or tall, 1 x 1, and 100,000 texels long give their texels at the
 // texel centres (within 1 %: a float v near 1 is a hundredth of a texel of 100,000 apart).
 TEST(Texture, ThinWideAndTallImagesGiveTheirTexels) {
@@ -277,7 +285,7 @@ TEST(Texture, ThinWideAndTallImagesGiveTheirTexels) {
     return std::array<float, 3>{float(i % 5) / 4.0f, float(i % 3) / 2.0f, float(i % 2)};
   };
   for (const auto& [w, h] : {std::pair{1, 1}, std::pair{1, 7}, std::pair{7, 1},
-                             std::pair{1, 100000}, std::pair{100000, 1}}) {
+                             std::pair{1, kTall}, std::pair{100000, 1}}) {
     SCOPED_TRACE(std::to_string(w) + " x " + std::to_string(h));
     Image img(w, h);
     for (int i = 0; i < w * h; ++i)  // written sRGB-encoded: colour(i), to 8 bits
@@ -286,8 +294,9 @@ TEST(Texture, ThinWideAndTallImagesGiveTheirTexels) {
     const std::string path = dir.path("thin.png");
     write_image(path, img);
     const TextureSet set({TextureDesc{path, {}, true}});
-    for (const int i : {0, 1, 2, 3, 4, 6, 12345, 99998, 99999}) {
-      if (i >= w * h) continue;
+    const int n = w * h;
+    for (const int i : {0, 1, 2, 3, 4, 6, n / 2 + 1, n - 2, n - 1}) {
+      if (i < 0 || i >= n) continue;
       const int x = w == 1 ? 0 : i, y = w == 1 ? i : 0;
       const float u = (float(x) + 0.5f) / float(w), v = 1.0f - (float(y) + 0.5f) / float(h);
       const vec4 got = set.sample(0, u, v, 0.0f);
