@@ -1,4 +1,4 @@
-// rt2/image/image.cpp — the memory check for frame buffers.
+// rt2/image/image.cpp — the memory available, and its check for frame buffers.
 #include "rt2/image/image.h"
 
 #include <unistd.h>
@@ -11,10 +11,7 @@
 
 namespace rt2 {
 
-namespace {
-
-// Bytes of memory available to a new allocation: MemAvailable, else free physical pages.
-double available_bytes() {
+double available_memory_bytes() {
   std::ifstream meminfo("/proc/meminfo");
   std::string key;
   double kib = 0;
@@ -24,12 +21,10 @@ double available_bytes() {
   return double(sysconf(_SC_AVPHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
 }
 
-}  // namespace
-
 void check_image_fits(int width, int height) {
   // The film (two vec4 and a count per pixel, film.h) and the image (three floats).
   const double need = double(width) * double(height) * (2.0 * 16.0 + 4.0 + 3.0 * sizeof(float));
-  const double have = available_bytes();
+  const double have = available_memory_bytes();
   if (need > have) {
     char buf[200];
     std::snprintf(buf, sizeof buf,

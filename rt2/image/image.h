@@ -10,6 +10,9 @@ namespace rt2 {
 // film.h, and its image) would not fit in the memory available now (MemAvailable in
 // /proc/meminfo).
 void check_image_fits(int width, int height);
+// Bytes of memory available to a new allocation now: MemAvailable in /proc/meminfo, else
+// the free physical pages.
+double available_memory_bytes();
 
 struct Image {
   int width = 0;

@@ -2,12 +2,36 @@
 #include "rt2/render/compiled_scene.h"
 
 #include <chrono>
+#include <cstdio>
+#include <string>
 #include <utility>
 
-#include "rt2/shading/brdf_lut.h"
+#include "rt2/base/error.h"
+#include "rt2/image/image.h"
 #include "rt2/image/image_io.h"
+#include "rt2/shading/brdf_lut.h"
 
 namespace rt2 {
+
+namespace {
+
+// Throws rt2::Error "FILE: ..." when the environment image of `header` would not fit in the
+// memory available now.
+void check_environment_fits(const std::string& file, const ImageHeader& header) {
+  const double need = Environment::bytes_for_image(int(header.width), int(header.height));
+  const double have = available_memory_bytes();
+  if (need > have) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  ": a %lld x %lld environment needs %.1f GiB of memory, but only %.1f GiB are "
+                  "available",
+                  static_cast<long long>(header.width), static_cast<long long>(header.height),
+                  need / 1073741824.0, have / 1073741824.0);
+    throw Error(file + buf);
+  }
+}
+
+}  // namespace
 
 CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config, Isa isa) {
   scene.validate();
@@ -42,7 +66,7 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
     if (m.model != Shading::phong || m.transparency > 0.0f) c.one_ray_per_sample = false;
   }
   t = Clock::now();
-  c.textures = TextureSet(scene.textures);
+  c.textures = TextureSet(scene.textures, scene.assets.max_image_pixels);
   c.times.textures_ms = ms_since(t);
   t = Clock::now();
   if (scene.environment) {
@@ -50,7 +74,9 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
     if (e.image.empty()) {
       c.environment = Environment::sky(e.sun_direction, e.intensity, e.rotation_degrees);
     } else {
-      Image img = read_image(e.image);
+      const ImageHeader header = read_image_header(e.image, scene.assets.max_image_pixels, e.image);
+      check_environment_fits(e.image, header);
+      Image img = read_image(e.image, scene.assets.max_image_pixels);
       c.environment = Environment::from_image(img.width, img.height, std::move(img.rgb),
                                               e.intensity, e.rotation_degrees);
     }

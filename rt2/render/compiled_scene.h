@@ -54,14 +54,17 @@ struct CompiledScene {
 
   // What compiling took, for reports (ms): the trees, the BRDF table (brdf_lut.h; made
   // once per process, 0 without physically based materials or when made before), opening
-  // the textures, and loading and prefiltering the environment.
+  // the textures (reading their texels and making their mip levels), and loading and
+  // prefiltering the environment.
   struct Times {
     double accel_ms = 0, brdf_table_ms = 0, textures_ms = 0, environment_ms = 0;
   } times;
 
   // Validates `scene` (Scene::validate) and compiles it: the trees with `config`, the
   // triangles' `bvh_width(isa)` wide; opens its textures and loads and prefilters its
-  // environment (throws rt2::Error "FILE: reason" when one cannot be read).
+  // environment, each image checked from its header against scene.assets first (throws
+  // rt2::Error "FILE: reason" when one cannot be read, is larger than
+  // scene.assets.max_image_pixels, or the environment would not fit in memory).
   static CompiledScene compile(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
 
   // Moves every light to where its path is at `seconds` (light_path.h) and rebuilds

@@ -19,7 +19,7 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 
 // The sizes and sample counts documented in environment.h.
-constexpr int kMaxSpecularWidth = 512;  // level 0
+constexpr int kMaxSpecularWidth = 512;  // level 0, each side
 constexpr int kMinSpecularWidth = 32;   // the roughest levels
 constexpr std::uint32_t kSpecularSamples = 128;
 constexpr int kSkyWidth = 256;
@@ -38,10 +38,16 @@ void check_rotation(float rotation_degrees) {
                 " degrees)");
 }
 
+// Index i of n cells scaled to m cells: i * m / n, in 64 bits (i * m overflows an int for
+// sides of 46,341 texels and more).
+int scaled(int i, int m, int n) { return int(std::int64_t(i) * m / n); }
+
 // `src` resampled to w x h. When both sides shrink, each output texel is the solid-angle
 // weighted mean of the source texels whose centres fall in it (a partition: every source
 // texel counts once); otherwise the source is read bilinearly at the output's centres.
-// Either way a constant map stays exactly constant up to rounding.
+// Either way a constant map stays exactly constant up to rounding. Rows so close to a pole
+// that their solid angle is 0 in float (maps hundreds of thousands of texels tall) are
+// averaged with equal weights.
 EquirectMap resample(const EquirectMap& src, int w, int h) {
   EquirectMap dst(w, h);
   const bool shrink = w <= src.width && h <= src.height;
@@ -52,18 +58,20 @@ EquirectMap resample(const EquirectMap& src, int w, int h) {
         dst.at(x, y) = src.bilinear(dst.texel_direction(x, y));
         continue;
       }
-      const int y0 = y * src.height / h, y1 = (y + 1) * src.height / h;
-      const int x0 = x * src.width / w, x1 = (x + 1) * src.width / w;
-      vec4 sum;
+      const int y0 = scaled(y, src.height, h), y1 = scaled(y + 1, src.height, h);
+      const int x0 = scaled(x, src.width, w), x1 = scaled(x + 1, src.width, w);
+      vec4 sum, plain;
       float weight = 0.0f;
       for (int sy = y0; sy < y1; ++sy) {
         const float row_weight = texel_solid_angle(sy, src.width, src.height);
         vec4 row;
         for (int sx = x0; sx < x1; ++sx) row += src.at(sx, sy);
         sum += row * row_weight;
+        plain += row;
         weight += row_weight * float(x1 - x0);
       }
-      dst.at(x, y) = sum * (1.0f / weight);
+      dst.at(x, y) = weight > 0.0f ? sum * (1.0f / weight)
+                                   : plain * (1.0f / (float(y1 - y0) * float(x1 - x0)));
     }
   }
   return dst;
@@ -71,24 +79,24 @@ EquirectMap resample(const EquirectMap& src, int w, int h) {
 
 // The source and its halvings down to 1 x 1, for filtered importance sampling.
 struct MipChain {
-  std::vector<EquirectMap> levels;  // levels[0] is the source itself
+  const EquirectMap& source;        // level 0
+  std::vector<EquirectMap> halved;  // levels 1, 2, ...
 
-  explicit MipChain(const EquirectMap& source) {
-    levels.push_back(source);
-    while (levels.back().width > 1 || levels.back().height > 1) {
-      const EquirectMap& last = levels.back();
-      levels.push_back(resample(last, std::max(1, last.width / 2), std::max(1, last.height / 2)));
-    }
+  explicit MipChain(const EquirectMap& s) : source(s) {
+    for (const EquirectMap* last = &source; last->width > 1 || last->height > 1;
+         last = &halved.back())
+      halved.push_back(resample(*last, std::max(1, last->width / 2), std::max(1, last->height / 2)));
   }
+  const EquirectMap& level(std::size_t l) const { return l == 0 ? source : halved[l - 1]; }
   // Trilinear: bilinear in the two levels around `lod` (clamped), blended linearly.
   vec4 lookup(const vec4& dir, float lod) const {
     const Uv uv = direction_to_uv(dir);
-    const float top = float(levels.size() - 1);
+    const float top = float(halved.size());
     const float l = std::clamp(lod, 0.0f, top);
     const int l0 = int(l);
-    if (float(l0) == top) return levels[std::size_t(l0)].bilinear(uv);
-    const vec4 a = levels[std::size_t(l0)].bilinear(uv);
-    const vec4 b = levels[std::size_t(l0) + 1].bilinear(uv);
+    if (float(l0) == top) return level(std::size_t(l0)).bilinear(uv);
+    const vec4 a = level(std::size_t(l0)).bilinear(uv);
+    const vec4 b = level(std::size_t(l0) + 1).bilinear(uv);
     return a + (b - a) * (l - float(l0));
   }
 };
@@ -96,15 +104,30 @@ struct MipChain {
 // E(n) / pi of the source as 9 spherical-harmonic coefficients: the source's radiance
 // projected on bands 0 ... 2 by quadrature over its texels (world directions, the rotation
 // applied), each band then convolved with the clamped cosine (A_0 = pi, A_1 = 2 pi / 3,
-// A_2 = pi / 4) and divided by pi.
-IrradianceSh project_irradiance(const EquirectMap& source, float u_shift) {
+// A_2 = pi / 4) and divided by pi. A map under 64 x 32 texels is integrated at 64 x 32
+// points or more, each texel's value over its whole extent: a map one texel wide holds
+// the same radiance at every longitude, which its one column of centres would not show.
+// Such a map's long side is first shrunk to 1024 texels (resample), which bounds the
+// points of a 1 x 2^28 map.
+IrradianceSh project_irradiance(const EquirectMap& map, float u_shift) {
+  constexpr int kLongSide = 1024;
+  EquirectMap shrunk;
+  const bool thin = map.width < 64 || map.height < 32;
+  if (thin && (map.width > kLongSide || map.height > kLongSide))
+    shrunk = resample(map, std::min(map.width, kLongSide), std::min(map.height, kLongSide));
+  const EquirectMap& source = shrunk.texels.empty() ? map : shrunk;
+  const int ku = (64 + source.width - 1) / source.width;  // points per texel, 1 from 64 up
+  const int kv = (32 + source.height - 1) / source.height;
+  const int grid_w = source.width * ku, grid_h = source.height * kv;
   std::array<double, 27> sum{};
-  for (int y = 0; y < source.height; ++y) {
-    const float solid_angle = texel_solid_angle(y, source.width, source.height);
-    for (int x = 0; x < source.width; ++x) {
-      // the world direction whose lookup (map_uv adds u_shift) is this texel
-      const vec4 d = uv_to_direction({(float(x) + 0.5f) / float(source.width) - u_shift,
-                                      (float(y) + 0.5f) / float(source.height)});
+  for (int gy = 0; gy < grid_h; ++gy) {
+    const int y = gy / kv;
+    const float solid_angle = texel_solid_angle(gy, grid_w, grid_h);
+    for (int gx = 0; gx < grid_w; ++gx) {
+      const int x = gx / ku;
+      // the world direction whose lookup (map_uv adds u_shift) is this point
+      const vec4 d = uv_to_direction({(float(gx) + 0.5f) / float(grid_w) - u_shift,
+                                      (float(gy) + 0.5f) / float(grid_h)});
       const std::array<float, 9> b = sh9(d);
       const vec4& l = source.at(x, y);
       for (int k = 0; k < 9; ++k)
@@ -152,7 +175,7 @@ std::vector<LobeSample> lobe_samples(float roughness, float source_texels) {
 // A w x h map of the radiance prefiltered with the GGX lobe of `roughness`, weighted by
 // n·l (Karis 2013, "Real Shading in Unreal Engine 4", PrefilterEnvMap).
 EquirectMap prefilter_specular(const MipChain& mips, float roughness, int w, int h) {
-  const EquirectMap& source = mips.levels[0];
+  const EquirectMap& source = mips.source;
   const std::vector<LobeSample> samples =
       lobe_samples(roughness, float(source.width) * float(source.height));
   float weight = 0.0f;
@@ -231,9 +254,18 @@ Environment Environment::from_image(int width, int height, std::vector<float> rg
   env.source_ = EquirectMap(width, height);
   for (std::size_t i = 0; i < count; ++i)
     env.source_.texels[i] = vec4(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) * intensity;
+  std::vector<float>().swap(rgb);  // not held while prefiltering
   env.u_shift_ = rotation_degrees / 360.0f;
   env.prefilter();
   return env;
+}
+
+double Environment::bytes_for_image(int width, int height) {
+  // The argument's 3 floats and the source's vec4 per texel while converting; then the
+  // source and its halvings (a third of it) while prefiltering, and the specular levels.
+  const double texels = double(width) * double(height);
+  const double specular = 2.0 * kMaxSpecularWidth * kMaxSpecularWidth * sizeof(vec4);
+  return texels * double(3 * sizeof(float) + sizeof(vec4)) + specular;
 }
 
 Environment Environment::sky(const vec4& sun_direction, float intensity, float rotation_degrees) {
@@ -268,11 +300,15 @@ Environment Environment::sky(const vec4& sun_direction, float intensity, float r
 void Environment::prefilter() {
   const auto start = std::chrono::steady_clock::now();
   irradiance_ = project_irradiance(source_, u_shift_);
-  // Level 0, the mirror: the source itself, at most kMaxSpecularWidth wide.
+  // Level 0, the mirror: the source itself, at most kMaxSpecularWidth on each side.
   int w = source_.width, h = source_.height;
   if (w > kMaxSpecularWidth) {
-    h = std::max(1, h * kMaxSpecularWidth / w);
+    h = std::max(1, scaled(h, kMaxSpecularWidth, w));
     w = kMaxSpecularWidth;
+  }
+  if (h > kMaxSpecularWidth) {
+    w = std::max(1, scaled(w, kMaxSpecularWidth, h));
+    h = kMaxSpecularWidth;
   }
   specular_.clear();
   specular_.push_back(resample(source_, w, h));

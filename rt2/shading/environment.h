@@ -50,8 +50,8 @@ struct IrradianceSh {
 //   cheaper per shaded point than a convolved map's direction-to-uv conversion and
 //   bilinear lookup.
 // * specular: kSpecularLevels maps at roughness k / (kSpecularLevels - 1): level 0 is the
-//   source (at most 512 texels wide), level k halves the resolution of level k-1 (not
-//   below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
+//   source (at most 512 texels on each side), level k halves the resolution of level k-1
+//   (not below 32 x 16). Each texel is GGX-prefiltered radiance around its direction under
 //   Karis's n = v = r assumption, weighted by n·l, from 128 GGX-distributed Hammersley
 //   samples, each read from the source's mip level that matches its solid angle
 //   (Colbert and Krivanek 2007, "GPU-Based Importance Sampling": filtered importance
@@ -71,6 +71,9 @@ class Environment {
   // that does not match rgb, or a negative or non-finite intensity or rotation.
   static Environment from_image(int width, int height, std::vector<float> rgb, float intensity,
                                 float rotation_degrees);
+  // The most memory (bytes) from_image holds at once for a width x height image, its
+  // argument included: to check before an image file is read.
+  static double bytes_for_image(int width, int height);
   // A procedural clear sky, 256 x 128: a blue gradient from the zenith to a brighter
   // horizon, a darker brown ground below it, and a sun (a disk of 2 degrees' radius with a
   // soft edge and a glow) towards sun_direction, given in the map's frame (before the

@@ -10,6 +10,7 @@
 
 #include "rt2/base/error.h"
 #include "rt2/image/image_codec.h"
+#include "rt2/image/image_io.h"
 #include "rt2/image/srgb.h"
 
 namespace rt2 {
@@ -38,7 +39,7 @@ std::string make_temp_dir() {
 
 }  // namespace
 
-TextureSet::TextureSet(const std::vector<TextureDesc>& textures) {
+TextureSet::TextureSet(const std::vector<TextureDesc>& textures, std::uint64_t max_pixels) {
   if (textures.empty()) return;
   try {
     codec_ = &image_codec();
@@ -53,12 +54,12 @@ TextureSet::TextureSet(const std::vector<TextureDesc>& textures) {
         out.write(t.data.data(), static_cast<std::streamsize>(t.data.size()));
         if (!out.flush()) throw Error(t.path + ": cannot write it to " + file);
       }
+      const ImageHeader header = read_image_header(file, max_pixels, t.path);
       std::string why;
-      int channels = 0;
-      void* h = codec_->texture_open(system_, file, channels, why);
+      void* h = codec_->texture_open(system_, file, header, why);
       if (!h) throw Error(t.path + ": cannot read texture: " + why);
       handles_.push_back(h);
-      channels_.push_back(channels);
+      channels_.push_back(header.channels);
       srgb_.push_back(t.srgb);
     }
   } catch (...) {
@@ -104,6 +105,10 @@ vec4 TextureSet::sample(std::uint32_t index, float u, float v, float width) cons
   if (srgb_[index])
     for (float& c : rgb) c = srgb_decode(c);
   return vec4(rgb[0], rgb[1], rgb[2]);
+}
+
+long long TextureSet::tiles_made() const {
+  return system_ ? codec_->texture_tiles_made(system_) : 0;
 }
 
 }  // namespace rt2

@@ -1,18 +1,20 @@
 // rt2/shading/texture.h — the images materials sample: OpenImageIO's TextureSystem behind rt2's
 // image codec library (rt2/image/image_codec.h), loaded only when a scene has textures.
 //
-// A TextureSet opens every TextureDesc of a scene once, when the scene is compiled, so that
-// a missing or unreadable image is one error line before rendering ("wood.png: ..."), not
-// black pixels. Embedded images (glTF buffers) are written to a private temporary folder
-// first — OIIO's cache reads files — and removed with the set. Lookups are filtered by
-// OIIO over a footprint (trilinear on the mip levels OIIO makes on first use for files
-// without their own, anisotropic where the footprint is) and repeat outside [0, 1].
+// A TextureSet opens every TextureDesc of a scene when the scene is compiled: a missing,
+// unreadable or too large image is one error line before rendering ("wood.png: ..."), not
+// black pixels, and every texel is read and every mip level made then, not in the first
+// frame. Embedded images (glTF buffers) are written to a private temporary folder first —
+// OIIO's cache reads files — and removed with the set. Lookups are filtered by OIIO over a
+// footprint (trilinear on the mip levels OIIO makes for files without their own,
+// anisotropic where the footprint is) and repeat outside [0, 1].
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "rt2/base/asset_policy.h"
 #include "rt2/geometry/ray.h"
 #include "rt2/scene/scene.h"
 
@@ -26,9 +28,11 @@ struct ImageCodec;
 class TextureSet {
  public:
   TextureSet() = default;  // no textures
-  // Opens every texture of `textures` (indices kept). Throws rt2::Error "PATH: reason" for
-  // the first that cannot be opened, removing what it made.
-  explicit TextureSet(const std::vector<TextureDesc>& textures);
+  // Opens every texture of `textures` (indices kept), each checked from its header first
+  // (image_io.h's read_image_header: at most `max_pixels` pixels, ...). Throws rt2::Error
+  // "PATH: reason" for the first that cannot be opened, removing what it made.
+  explicit TextureSet(const std::vector<TextureDesc>& textures,
+                      std::uint64_t max_pixels = AssetPolicy{}.max_image_pixels);
   ~TextureSet();
   TextureSet(TextureSet&& other) noexcept;
   TextureSet& operator=(TextureSet&& other) noexcept;
@@ -40,6 +44,9 @@ class TextureSet {
   // Texture `index`'s linear RGB at (u, v), filtered over a square footprint `width` wide in
   // texture coordinates (0: the finest level, bilinear). Thread-safe.
   vec4 sample(std::uint32_t index, float u, float v, float width) const;
+  // The tiles OIIO's cache (which every set shares) has made so far, read from files or
+  // mip-mapped; 0 without textures. For tests: sample() makes none.
+  long long tiles_made() const;
 
  private:
   void release();

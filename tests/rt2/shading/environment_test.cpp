@@ -9,6 +9,8 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "rt2/shading/brdf.h"
@@ -106,6 +108,24 @@ TEST(Environment, ConstantImagePrefiltersToItsColour) {
   const Environment env = Environment::from_image(
       96, 48, make_image(96, 48, [&](int, int) { return color; }), 2.0f, 30.0f);
   expect_constant(env, color * 2.0f, 1e-3f);
+}
+
+// Maps one texel wide or tall, 1 x 1, and 100,000 texels on a side (where i * side
+// overflowed an int while resampling, and rows next to a pole have no solid angle in
+// float): every lookup gives the constant, and no specular level is over 512 texels a side.
+TEST(Environment, ThinWideAndTallImagesPrefilterToTheirColour) {
+  const vec4 color(0.3f, 0.5f, 0.7f);
+  for (const auto& [w, h] : {std::pair{1, 1}, std::pair{1, 7}, std::pair{7, 1},
+                             std::pair{1, 100000}, std::pair{100000, 1}, std::pair{3, 30000}}) {
+    SCOPED_TRACE(std::to_string(w) + " x " + std::to_string(h));
+    const Environment env =
+        Environment::from_image(w, h, make_image(w, h, [&](int, int) { return color; }), 1.0f, 10.0f);
+    expect_constant(env, color, 1e-3f);
+    for (int k = 0; k < Environment::kSpecularLevels; ++k) {
+      EXPECT_LE(env.specular_map(k).width, 512) << "level " << k;
+      EXPECT_LE(env.specular_map(k).height, 512) << "level " << k;
+    }
+  }
 }
 
 // Radiance 1 above the horizon, 0 below: E / pi on a plane tilted by beta from +y is

@@ -9,6 +9,7 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rt2/base/error.h"
@@ -245,6 +247,62 @@ TEST(Texture, AWideFootprintAveragesAndAZeroOneGivesAPureTexel) {
     const float u = (float(x) + 0.5f) / n, v = 1.0f - 0.5f / n;  // row 0
     const vec4 sharp = set.sample(0, u, v, 0.0f);
     EXPECT_NEAR(sharp[0], float(x % 2), 1e-4f) << x;
+  }
+}
+
+// Opening reads every texel and makes every mip level: lookups anywhere, with footprints
+// from none to the whole image, then make no tile (so the first frame costs what the others
+// do). A 256 x 256 PNG has no mip levels of its own: OIIO makes 8.
+TEST(Texture, LookupsAfterOpeningMakeNoTile) {
+  const TempDir dir("texture");
+  constexpr int n = 256;
+  Image img(n, n);
+  for (std::size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = float((i * 7919) % 256) / 255.0f;
+  const std::string path = dir.path("noise.png");
+  write_image(path, img);
+  const TextureSet set({TextureDesc{path, {}, true}});
+  const long long made = set.tiles_made();
+  EXPECT_GT(made, 0);
+  for (float width = 0.0f; width <= 1.0f; width = width == 0.0f ? 0.5f / n : 2.0f * width)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) (void)set.sample(0, (float(x) + 0.3f) / 16.0f, (float(y) + 0.6f) / 16.0f, width);
+  EXPECT_EQ(set.tiles_made(), made);
+}
+
+// Under ASan each band of 64 rows OIIO 2.4's texture cache reads from a file costs a 64 MiB
+// allocation that ASan poisons: the tall texture is shorter there.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kTall = 2000;
+#else
+constexpr int kTall = 100000;
+#endif
+
+// Images one texel wide or tall, 1 x 1, and 100,000 texels long give their texels at the
+// texel centres (within 1 %: a float v near 1 is a hundredth of a texel of 100,000 apart).
+TEST(Texture, ThinWideAndTallImagesGiveTheirTexels) {
+  const TempDir dir("texture");
+  const auto colour = [](int i) {
+    return std::array<float, 3>{float(i % 5) / 4.0f, float(i % 3) / 2.0f, float(i % 2)};
+  };
+  for (const auto& [w, h] : {std::pair{1, 1}, std::pair{1, 7}, std::pair{7, 1},
+                             std::pair{1, kTall}, std::pair{100000, 1}}) {
+    SCOPED_TRACE(std::to_string(w) + " x " + std::to_string(h));
+    Image img(w, h);
+    for (int i = 0; i < w * h; ++i)  // written sRGB-encoded: colour(i), to 8 bits
+      for (int c = 0; c < 3; ++c)
+        img.rgb[std::size_t(3 * i + c)] = srgb_decode(colour(i)[std::size_t(c)]);
+    const std::string path = dir.path("thin.png");
+    write_image(path, img);
+    const TextureSet set({TextureDesc{path, {}, true}});
+    const int n = w * h;
+    for (const int i : {0, 1, 2, 3, 4, 6, n / 2 + 1, n - 2, n - 1}) {
+      if (i < 0 || i >= n) continue;
+      const int x = w == 1 ? 0 : i, y = w == 1 ? i : 0;
+      const float u = (float(x) + 0.5f) / float(w), v = 1.0f - (float(y) + 0.5f) / float(h);
+      const vec4 got = set.sample(0, u, v, 0.0f);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[c], srgb_decode(colour(i)[std::size_t(c)]), 0.01f) << "texel " << i;
+    }
   }
 }
 
