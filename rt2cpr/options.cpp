@@ -391,7 +391,7 @@ void check_interactive(const Options& o, Given&& given) {
     return;
   }
   for (const char* flag : {"--frames", "--stats", "--reference", "--time-budget",
-                           "--animate-lights", "--passes", "--fps"})
+                           "--animate-lights", "--passes"})
     if (given(flag)) throw rt2::Error(std::string(flag) + " does not apply to --interactive");
   for (const auto& [flag, value] : {std::pair{"--script", &v.script}, {"--frame-log", &v.frame_log},
                                     {"--screenshot-key", &v.screenshot_key}})

@@ -100,8 +100,6 @@ TEST_F(AnimatedFrames, AnimationOptionsAreCheckedWithOneLine) {
                        "has no animation 'walk' (its 2: #0 'spin', #1 'hop')");
   expect_clean_failure(run(std::string(kSmall) + " --animation spin"),
                        "the built-in scene has no animations");
-  expect_clean_failure(run(scene() + " " + kSmall + " --interactive --fps 10"),
-                       "--fps does not apply to --interactive");
 }
 
 }  // namespace
