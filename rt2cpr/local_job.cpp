@@ -17,7 +17,7 @@ void LocalJob::check(const Options& o) const {
 }
 
 void LocalJob::render_frames(const Options& o, RenderSetup& setup, Report& report,
-                             rt2::Image& image) {
+                             rt2::Image& image, const FrameSink& each) {
   rt2::Film& film = setup.film;
   ProgressBar bar(!o.quiet);
   const int passes = o.render.passes;
@@ -26,10 +26,13 @@ void LocalJob::render_frames(const Options& o, RenderSetup& setup, Report& repor
     if (f > 0) film.clear();
     rt2::FrameResult frame;
     const auto start = Clock::now();
+    // The frame's pose of an animated scene, inside the frame's time.
+    if (f > 0)
+      if (const auto posed = setup.pose(o, f)) report.add_pose(posed->load_ms, posed->place_ms);
     // The frame's lights: moved and their tree rebuilt, inside the frame's time.
     if (o.animate_lights)
       report.add_light_update(
-          setup.compiled.move_lights(f / 30.0, rt2::effective_threads(o.schedule)));
+          setup.compiled.move_lights(frame_seconds(o, f), rt2::effective_threads(o.schedule)));
     int done = 0;
     double last_pass_ms = 0.0;
     for (int p = 0; p < passes; ++p) {
@@ -51,6 +54,7 @@ void LocalJob::render_frames(const Options& o, RenderSetup& setup, Report& repor
     bar.end_frame();
     report.add_frame(frame, done);
     if (!o.quiet && o.frames > 1) std::printf("frame %d: %.2f ms\n", f + 1, frame.ms);
+    each(f, image);
   }
 }
 

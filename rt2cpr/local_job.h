@@ -9,6 +9,7 @@
 #pragma once
 
 #include "rt2/image/image.h"
+#include "rt2cpr/frame_files.h"
 #include "rt2cpr/options.h"
 #include "rt2cpr/report.h"
 #include "rt2cpr/scene_setup.h"
@@ -26,10 +27,11 @@ class LocalJob {
   // Throws rt2::Error for an option of rt2cpr_mpi's (--rank0 serve: no one would render).
   void check(const Options& o) const;
 
-  // Renders the frames of `o` in passes (--passes, --time-budget), with the lights moved
-  // each frame (--animate-lights), adding each frame to `report`; the last one's mean into
-  // `image`.
-  void render_frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image);
+  // Renders the frames of `o` in passes (--passes, --time-budget), an animated scene posed
+  // and the lights moved (--animate-lights) before each, adding each frame to `report`;
+  // each frame's mean into `image`, then given to `each` with its index.
+  void render_frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image,
+                     const FrameSink& each);
 
   // The process exits with `status`.
   static int fail(int status) { return status; }

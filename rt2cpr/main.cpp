@@ -22,6 +22,7 @@
 #include "rt2/image/image_io.h"
 #include "rt2/image/output_file.h"
 #include "rt2cpr/failure.h"
+#include "rt2cpr/frame_files.h"
 #include "rt2cpr/options.h"
 #include "rt2cpr/report.h"
 #include "rt2cpr/scene_setup.h"
@@ -79,7 +80,17 @@ int run(const Options& o, Job& job, const char*& doing) {
   if (job.leader() && !o.quiet) report.print_setup();
   rt2::Image image;
   doing = "rendering";
-  job.render_frames(o, *setup, report, image);
+  // --output with a run of '#': every frame its own file, written as it is done.
+  const bool per_frame = !o.output.empty() && names_frames(o.output);
+  std::string first_file, last_file;
+  job.render_frames(o, *setup, report, image, [&](int f, const rt2::Image& frame) {
+    if (!per_frame || !job.leader()) return;
+    doing = "writing the image";
+    last_file = frame_file(o.output, f + 1);
+    rt2::write_image(last_file, frame, o.display);
+    if (first_file.empty()) first_file = last_file;
+    doing = "rendering";
+  });
   if (!job.leader()) return 0;
 
   // A comparison that fails now still leaves the render written, then reports the failure.
@@ -93,7 +104,12 @@ int run(const Options& o, Job& job, const char*& doing) {
     }
   }
   if (!o.quiet) report.print_summary();
-  if (!o.output.empty()) {
+  if (per_frame) {
+    if (!o.quiet && o.frames == 1) std::printf("wrote %s\n", printable(first_file).c_str());
+    if (!o.quiet && o.frames > 1)
+      std::printf("wrote %d frames, %s ... %s\n", o.frames, printable(first_file).c_str(),
+                  printable(last_file).c_str());
+  } else if (!o.output.empty()) {
     doing = "writing the image";
     rt2::write_image(o.output, image, o.display);
     if (!o.quiet) std::printf("wrote %s\n", printable(o.output).c_str());

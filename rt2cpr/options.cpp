@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <charconv>
 #include <climits>
 #include <cstdint>
@@ -504,6 +505,13 @@ std::optional<Options> parse_options(int argc, char** argv) {
           "clustered: depth slices per block (1 ... 256)");
   app.add_flag("--animate-lights", o.animate_lights,
                "move every light along its path (frame f at f/30 s), light tree rebuilt each frame");
+  real("--time", o.pose.seconds, "render the scene's animation at this many seconds (the "
+                                 "first frame; each next one 1/fps later)");
+  real("--fps", o.fps, "frames per second of an animated scene over --frames (> 0)");
+  app.add_option("--animation", o.pose.animation,
+                 "which of a glTF's animations plays: its name or index")
+      ->type_name("NAME|INDEX")
+      ->default_str("the first");
   app.add_option("--shadows", shadows, "on | off: no shadow rays (every light reaches)");
   app.add_flag("--stage-times", o.render.stage_times,
                "time the kernel's stages (generate, intersect, lights, shade, shadow; ~2 % "
@@ -631,6 +639,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   float_value("--time-budget", o.time_budget);
   float_value("--exposure", o.display.exposure);
   float_value("--target-fps", o.interactive.target_fps);
+  float_value("--time", o.pose.seconds);
+  float_value("--fps", o.fps);
   if (given("--leaf-size"))
     o.bvh.max_leaf_size = integer_of<std::uint32_t>("--leaf-size", numbers["--leaf-size"], 1);
   if (given("--max-texture-pixels"))
@@ -639,6 +649,12 @@ std::optional<Options> parse_options(int argc, char** argv) {
   check_paths(o, given);
   check_interactive(o, given);
 
+  if (!(std::abs(o.pose.seconds) <= 1e9))
+    throw rt2::Error("time must be in [-1e9, 1e9] seconds, got " + std::to_string(o.pose.seconds));
+  if (!(o.fps > 0.0 && o.fps <= 1e6))
+    throw rt2::Error("fps must be in (0, 1000000], got " + std::to_string(o.fps));
+  if (given("--animation") && o.pose.animation.empty())
+    throw rt2::Error("--animation needs a name or an index");
   if (!(o.time_budget >= 0.0 && o.time_budget <= 1e9))
     throw rt2::Error("time-budget must be in [0, 1e9] seconds, got " + std::to_string(o.time_budget));
   o.render.pattern = rt2::parse_pattern(pattern);

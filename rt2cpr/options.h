@@ -32,6 +32,10 @@ struct Options {
   int lights = -1;     // total light count; -1: the scene's own lights
   std::optional<rt2::RangeInterval> light_range;  // --light-range (rt2::set_light_count)
   bool animate_lights = false;  // frame f: lights where their paths are at f / 30 s
+  // A glTF's animation (--animation: its name or index; empty: the first) at --time
+  // seconds for the first frame, each further frame 1 / --fps later.
+  rt2::ScenePose pose;
+  double fps = 30.0;
   rt2::BvhConfig bvh;
   rt2::Isa isa = rt2::best_isa();  // the ray kernels' instruction set (--isa)
   bool no_bvh = false;  // one leaf holding every primitive (brute force)

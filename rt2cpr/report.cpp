@@ -144,6 +144,12 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
   };
   std::size_t pbr = 0;
   for (const rt2::Material& m : compiled.materials) pbr += m.model == rt2::Shading::pbr;
+  if (scene.animation >= 0) {
+    const rt2::AnimationSummary& a = scene.animations[std::size_t(scene.animation)];
+    j_["animation"] = {{"name", a.name}, {"index", scene.animation},
+                       {"duration", a.duration}, {"time", o.pose.seconds}, {"fps", o.fps}};
+  }
+  j_["animations"] = scene.animations.size();
   j_["materials"] = compiled.materials.size();
   j_["materials_pbr"] = pbr;
   j_["textures"] = compiled.textures.size();
@@ -196,6 +202,13 @@ void Report::print_setup() const {
                 j_["textures_ms"].get<double>(),
                 printable(j_["environment"].get<std::string>()).c_str(),
                 j_["environment_ms"].get<double>());
+  if (j_.contains("animation")) {
+    const nlohmann::json& a = j_["animation"];
+    std::printf("animation %d '%s' of %zu, %.3f s long: frames from %.3f s, %g a second\n",
+                a["index"].get<int>(), printable(a["name"].get<std::string>()).c_str(),
+                j_["animations"].get<std::size_t>(), a["duration"].get<double>(),
+                a["time"].get<double>(), a["fps"].get<double>());
+  }
   if (j_["degenerate_triangles"].get<std::size_t>() > 0)
     std::printf("dropped %zu degenerate triangles\n", j_["degenerate_triangles"].get<std::size_t>());
   std::printf("bvh %s, leaf size %u, %d-wide: %u nodes, %u leaves, depth %u, %.1f MB, built in "
@@ -263,6 +276,9 @@ void Report::print_summary() const {
                 sm["generate"].get<double>(), sm["intersect"].get<double>(),
                 sm["lights"].get<double>(), sm["shade"].get<double>(), sm["shadow"].get<double>());
   }
+  if (j.contains("pose_ms"))
+    std::printf("scene posed per frame: load %.2f ms, trees and lights %.2f ms (medians)\n",
+                j["pose_ms"]["load"].get<double>(), j["pose_ms"]["place"].get<double>());
   if (j.contains("light_update_ms")) {
     const auto& u = j["light_update_ms"];
     std::printf("light update per frame: %.2f ms (move and bounds %.2f, Morton %.2f, sort "
@@ -357,6 +373,9 @@ nlohmann::json Report::json() const {
                                 {"bytes_sent", r.bytes_sent},
                                 {"serve_ms", r.serve_ms}});
   }
+  if (!poses_.empty())
+    j["pose_ms"] = {{"load", median_of(poses_, [](const Pose& p) { return p.load_ms; })},
+                    {"place", median_of(poses_, [](const Pose& p) { return p.place_ms; })}};
   if (!light_updates_.empty()) {
     using B = rt2::LightBvh::BuildTimes;
     const auto step = [&](double B::*field) {

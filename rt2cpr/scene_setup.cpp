@@ -14,8 +14,10 @@
 namespace rt2cpr {
 
 rt2::Scene load_scene(const Options& o) {
+  if (o.scene.empty() && !o.pose.animation.empty())
+    throw rt2::Error("the built-in scene has no animations (--animation " + o.pose.animation + ")");
   rt2::Scene scene =
-      o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene, o.assets);
+      o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene, o.assets, o.pose);
   if (!o.camera.empty()) {
     scene.camera = rt2::load_camera(o.camera);
     scene.framed_bounds.reset();
@@ -93,5 +95,24 @@ RenderSetup::RenderSetup(const Options& o)
       compiled(timed(build_ms, [&] { return compile_at_camera(scene, o); })),
       renderer(compiled, rt2::View{scene.camera, o.render}),
       film(o.render.width, o.render.height) {}
+
+std::optional<RenderSetup::PoseTimes> RenderSetup::pose(const Options& o, int frame) {
+  if (scene.animation < 0) return std::nullopt;
+  Options at = o;
+  at.pose.seconds = frame_seconds(o, frame);
+  PoseTimes t;
+  scene = timed(t.load_ms, [&] {
+    rt2::Scene s = load_scene(at);
+    set_lights(s, o.lights, o.light_range);
+    return s;
+  });
+  const auto t0 = Clock::now();
+  scene.validate();
+  rt2::recenter_on_camera(scene);
+  compiled.place(scene, o.bvh, o.isa);
+  renderer.set_camera(scene.camera);
+  t.place_ms = ms_since(t0);
+  return t;
+}
 
 }  // namespace rt2cpr

@@ -3,6 +3,8 @@
 // say, and made ready to render from its camera.
 #pragma once
 
+#include <optional>
+
 #include "rt2/render/compiled_scene.h"
 #include "rt2/image/film.h"
 #include "rt2/render/renderer.h"
@@ -36,6 +38,9 @@ void warn_about_added_lights(const rt2::Scene& scene, int lights,
 // takes it.
 void set_lights(rt2::Scene& scene, int lights, const std::optional<rt2::RangeInterval>& range);
 
+// The time frame `frame` (0, 1, ...) of `o` shows: --time plus frame / --fps seconds.
+inline double frame_seconds(const Options& o, int frame) { return o.pose.seconds + frame / o.fps; }
+
 // `scene` validated, moved so that its camera is at the origin (full float precision where
 // the pixels come from: Scene::origin keeps where the world's origin went) and compiled.
 rt2::CompiledScene compile_at_camera(rt2::Scene& scene, const Options& o);
@@ -48,6 +53,16 @@ struct RenderSetup {
   explicit RenderSetup(const Options& o);
   RenderSetup(const RenderSetup&) = delete;
   RenderSetup& operator=(const RenderSetup&) = delete;
+
+  // An animated scene (Scene::animation >= 0) posed for frame `frame` of `o`: loaded again
+  // at frame_seconds(o, frame), placed (CompiledScene::place: trees, lights; the materials,
+  // textures and environment stay) and its camera given to the renderer, so that the frame
+  // is what a fresh set-up at that time renders. Returns how long loading and placing took;
+  // nothing, doing nothing, for a scene that does not move. Throws rt2::Error.
+  struct PoseTimes {
+    double load_ms = 0.0, place_ms = 0.0;
+  };
+  std::optional<PoseTimes> pose(const Options& o, int frame);
 
   double load_ms = 0.0;   // load_scene and set_lights
   double build_ms = 0.0;  // compile_at_camera

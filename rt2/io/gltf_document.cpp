@@ -47,7 +47,7 @@ constexpr Ignored kIgnoredExtensions[] = {
     {"KHR_texture_basisu", "KTX2 textures are not read"},
     {"EXT_texture_webp", "WebP textures are read only where a fallback image exists"},
     {"EXT_mesh_gpu_instancing", "instanced copies are not drawn"},
-    {"KHR_animation_pointer", "animations are ignored"},
+    {"KHR_animation_pointer", "animated properties other than node transforms stay still"},
 };
 
 std::uint32_t le32(const std::string& b, std::size_t at) {
@@ -408,6 +408,27 @@ void check_node(const Schema& s, const json& n, const std::string& at) {
               at + ".extensions.KHR_lights_punctual.light");
 }
 
+void check_animation(const Schema& s, const json& a, const std::string& at) {
+  const auto index = [&](const json& v, const std::string& p) { s.integer(v, p); };
+  s.optional(a, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
+  s.array(s.required(a, "channels", at), at + ".channels", 1);
+  s.array(s.required(a, "samplers", at), at + ".samplers", 1);
+  s.each_object(a, "channels", at, [&](const json& c, const std::string& p) {
+    s.integer(s.required(c, "sampler", p), p + ".sampler");
+    const json& target = s.object(s.required(c, "target", p), p + ".target");
+    s.optional(target, "node", p + ".target", index);
+    s.one_of(s.required(target, "path", p + ".target"), p + ".target.path",
+             {"translation", "rotation", "scale", "weights", "pointer"});
+  });
+  s.each_object(a, "samplers", at, [&](const json& v, const std::string& p) {
+    s.integer(s.required(v, "input", p), p + ".input");
+    s.integer(s.required(v, "output", p), p + ".output");
+    s.optional(v, "interpolation", p, [&](const json& i, const std::string& q) {
+      s.one_of(i, q, {"LINEAR", "STEP", "CUBICSPLINE"});
+    });
+  });
+}
+
 void check_camera(const Schema& s, const json& c, const std::string& at) {
   s.optional(c, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
   const std::string& type =
@@ -569,7 +590,8 @@ void check_schema(const Schema& s, const json& root, bool glb, std::vector<std::
   s.each_object(root, "cameras", "",
                 [&](const json& c, const std::string& at) { check_camera(s, c, at); });
   s.each_object(root, "skins", "", [](const json&, const std::string&) {});
-  s.each_object(root, "animations", "", [](const json&, const std::string&) {});
+  s.each_object(root, "animations", "",
+                [&](const json& a, const std::string& at) { check_animation(s, a, at); });
   if (const json* l = s.extension(root, "KHR_lights_punctual", ""))
     s.each_object(*l, "lights", "extensions.KHR_lights_punctual",
                   [&](const json& light, const std::string& at) { check_light(s, light, at); });

@@ -175,21 +175,9 @@ tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, 
 
 // ---- transforms, in double ----------------------------------------------------------------
 
-// A 4x4 matrix, column-major as glTF stores it: m[col * 4 + row].
-using Mat4 = std::array<double, 16>;
-
-constexpr Mat4 kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-
-Mat4 operator*(const Mat4& a, const Mat4& b) {
-  Mat4 r{};
-  for (int c = 0; c < 4; ++c)
-    for (int row = 0; row < 4; ++row) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k) s += a[k * 4 + row] * b[c * 4 + k];
-      r[c * 4 + row] = s;
-    }
-  return r;
-}
+// A 4x4 matrix, column-major as glTF stores it: m[col * 4 + row] (rt2/scene/animation.h).
+using Mat4 = Matrix4d;
+constexpr Mat4 kIdentity = kIdentity4d;
 
 struct Vec3d {
   double x = 0, y = 0, z = 0;
@@ -396,8 +384,8 @@ MetallicRoughness from_specular_glossiness(const std::array<double, 3>& diffuse,
 // What a glTF file is read into, and from.
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const AssetPolicy& policy)
-      : path_(path), model_(parse_model(path, policy, quantized_)) {
+  GltfReader(const std::string& path, const AssetPolicy& policy, const ScenePose& pose)
+      : path_(path), pose_(pose), model_(parse_model(path, policy, quantized_)) {
     scene_.assets = policy;
   }
 
@@ -413,6 +401,10 @@ class GltfReader {
   Accessor accessor(int index, const std::string& what, std::initializer_list<int> types,
                     int components) const;
 
+  Track track(const tinygltf::AnimationSampler& sampler, NodeProperty property,
+              const std::string& at);
+  Animation animation(int index);
+  void pose_nodes();
   void walk(int root, const Mat4& parent);
   void add_primitive(int mesh_index, int prim_index, const Mat4& world);
   void set_camera(int node, int camera_index, const Mat4& world);
@@ -422,6 +414,7 @@ class GltfReader {
   std::uint32_t texture(int index, bool srgb, int tex_coord, const std::string& what);
 
   std::string path_;
+  ScenePose pose_;
   bool quantized_ = false;  // KHR_mesh_quantization: integer texture coordinates as declared
   tinygltf::Model model_;
   Scene scene_;
@@ -430,6 +423,8 @@ class GltfReader {
   int default_material_ = -1;
   std::map<std::pair<int, bool>, std::uint32_t> textures_;  // (image, srgb) -> scene texture
   std::vector<char> on_path_;  // nodes on the current walk (cycle check)
+  std::vector<NodeTrs> posed_;  // per node, its transform as posed; empty: no animation
+  std::size_t key_values_ = 0;  // keyframe numbers read, against kMaxGltfKeyValues
   std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0, triangles_ = 0;
   std::uint64_t memory_ = available_memory();  // what the triangles may take
   bool have_camera_ = false;
@@ -687,8 +682,19 @@ std::uint32_t GltfReader::material(int index) {
   return std::uint32_t(material_of_[std::size_t(index)]);
 }
 
-// A node's local matrix: `matrix`, or translation · rotation · scale.
-Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
+// A node's own translation, rotation and scale (its matrix, when it has one, is not one).
+NodeTrs node_trs(const tinygltf::Node& n) {
+  NodeTrs trs;
+  // (local_matrix refuses other sizes)
+  if (n.translation.size() == 3) std::copy_n(n.translation.begin(), 3, trs.translation.begin());
+  if (n.rotation.size() == 4) std::copy_n(n.rotation.begin(), 4, trs.rotation.begin());
+  if (n.scale.size() == 3) std::copy_n(n.scale.begin(), 3, trs.scale.begin());
+  return trs;
+}
+
+// A node's local matrix: `matrix`, or translation · rotation · scale, those of `posed` (the
+// node as an animation poses it) when given.
+Mat4 local_matrix(const tinygltf::Node& n, const NodeTrs* posed, const std::string& at) {
   const auto check = [&](const std::vector<double>& v, std::size_t size, const char* field) {
     if (!v.empty() && v.size() != size)
       error_at(at, 0, 0,
@@ -706,22 +712,157 @@ Mat4 local_matrix(const tinygltf::Node& n, const std::string& at) {
     std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
     return m;
   }
-  Mat4 t = kIdentity, r = kIdentity, s = kIdentity;
-  if (!n.translation.empty()) std::copy(n.translation.begin(), n.translation.end(), t.begin() + 12);
-  if (!n.rotation.empty()) {
-    double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-    const double len = std::sqrt(x * x + y * y + z * z + w * w);
-    if (!(len > 0)) error_at(at, 0, 0, "rotation is a zero quaternion");
-    x /= len, y /= len, z /= len, w /= len;
-    // clang-format off
-    r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),     0,
-         2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),     0,
-         2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y), 0,
-         0,                       0,                       0,                       1};
-    // clang-format on
+  const NodeTrs trs = posed ? *posed : node_trs(n);
+  const std::array<double, 4>& q = trs.rotation;
+  if (!(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 0))
+    error_at(at, 0, 0, posed ? "its animated rotation is a zero quaternion"
+                             : "rotation is a zero quaternion");
+  return matrix_of(trs);
+}
+
+// The keys of `sampler` for a node's `property`, checked: times finite and strictly
+// increasing, one value (three for a cubic spline) per time, every number finite.
+Track GltfReader::track(const tinygltf::AnimationSampler& sampler, NodeProperty property,
+                        const std::string& at) {
+  Track t;
+  t.property = property;
+  if (sampler.interpolation == "STEP")
+    t.interpolation = Interpolation::step;
+  else if (sampler.interpolation == "CUBICSPLINE")
+    t.interpolation = Interpolation::cubic_spline;
+  else if (sampler.interpolation != "LINEAR")
+    fail(at + ": interpolation '" + one_line(sampler.interpolation) + "' is not one of glTF's");
+  const Accessor in = accessor(sampler.input, at + " input", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 1);
+  const int width = t.width();
+  // Rotations may be normalized integers (glTF 2.0 3.11); positions and scales are floats.
+  const Accessor out =
+      property == NodeProperty::rotation
+          ? accessor(sampler.output, at + " output",
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                     4)
+          : accessor(sampler.output, at + " output", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
+  if (out.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !out.normalized)
+    fail(at + ": output: integer rotations must be normalized");
+  if (in.count == 0) fail(at + ": input has no keys");
+  const std::size_t per_key = t.interpolation == Interpolation::cubic_spline ? 3 : 1;
+  if (out.count != in.count * per_key)
+    fail(at + ": output has " + std::to_string(out.count) + " elements for " +
+         std::to_string(in.count) + " keys, expected " + std::to_string(in.count * per_key) +
+         (per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : ""));
+  key_values_ += in.count + out.count * std::size_t(width);
+  if (key_values_ > kMaxGltfKeyValues)
+    fail("its animations hold more than " + std::to_string(kMaxGltfKeyValues) +
+         " keyframe numbers");
+  t.times.resize(in.count);
+  for (std::size_t i = 0; i < in.count; ++i) {
+    t.times[i] = in.get(i, 0);
+    if (!std::isfinite(t.times[i]))
+      fail(at + ": input key " + std::to_string(i) + " is " + fmt(t.times[i]));
+    if (i > 0 && !(t.times[i] > t.times[i - 1]))
+      fail(at + ": input key " + std::to_string(i) + " (" + fmt(t.times[i]) +
+           " s) does not come after key " + std::to_string(i - 1) + " (" +
+           fmt(t.times[i - 1]) + " s); key times must increase");
   }
-  if (!n.scale.empty()) s[0] = n.scale[0], s[5] = n.scale[1], s[10] = n.scale[2];
-  return t * r * s;
+  t.values.resize(out.count * std::size_t(width));
+  for (std::size_t i = 0; i < out.count; ++i) {
+    double length2 = 0;
+    for (int k = 0; k < width; ++k) {
+      const double v = out.get(i, k);
+      if (!std::isfinite(v))
+        fail(at + ": output element " + std::to_string(i) + " holds " + fmt(v));
+      t.values[i * std::size_t(width) + std::size_t(k)] = v;
+      length2 += v * v;
+    }
+    const bool is_value = per_key == 1 || i % 3 == 1;  // not a cubic spline's tangent
+    if (property == NodeProperty::rotation && is_value && !(length2 > 0))
+      fail(at + ": output element " + std::to_string(i) + " is a zero quaternion");
+  }
+  return t;
+}
+
+// Animation `index` of the file, its channels and samplers checked.
+Animation GltfReader::animation(int index) {
+  const tinygltf::Animation& a = model_.animations[std::size_t(index)];
+  Animation result;
+  result.name = a.name.empty() ? "#" + std::to_string(index) : one_line(a.name);
+  const std::string at = "animation " + named(index, a.name);
+  std::vector<std::pair<int, NodeProperty>> targets;
+  for (std::size_t c = 0; c < a.channels.size(); ++c) {
+    const tinygltf::AnimationChannel& ch = a.channels[c];
+    const std::string c_at = at + " channel " + std::to_string(c);
+    if (ch.sampler < 0 || std::size_t(ch.sampler) >= a.samplers.size())
+      fail(c_at + ": sampler " + std::to_string(ch.sampler) + " does not exist (" +
+           std::to_string(a.samplers.size()) + " samplers)");
+    if (ch.target_node < 0) continue;  // glTF: no node, nothing to animate
+    if (std::size_t(ch.target_node) >= model_.nodes.size())
+      fail(c_at + ": node " + std::to_string(ch.target_node) + " does not exist (" +
+           std::to_string(model_.nodes.size()) + " nodes)");
+    NodeProperty property;
+    if (ch.target_path == "translation")
+      property = NodeProperty::translation;
+    else if (ch.target_path == "rotation")
+      property = NodeProperty::rotation;
+    else if (ch.target_path == "scale")
+      property = NodeProperty::scale;
+    else {
+      warn_once("anim-" + ch.target_path,
+                "animated " + one_line(ch.target_path) + " stay still (rt2 animates node "
+                "translation, rotation and scale)");
+      continue;
+    }
+    const tinygltf::Node& node = model_.nodes[std::size_t(ch.target_node)];
+    if (!node.matrix.empty())
+      fail(c_at + ": node " + named(ch.target_node, node.name) +
+           " has a matrix, and glTF allows only nodes without one to be animated");
+    if (std::find(targets.begin(), targets.end(), std::pair(ch.target_node, property)) !=
+        targets.end())
+      fail(c_at + ": node " + std::to_string(ch.target_node) + " " + ch.target_path +
+           " is the target of an earlier channel; glTF allows one per animation");
+    targets.emplace_back(ch.target_node, property);
+    result.channels.push_back(
+        {ch.target_node, track(a.samplers[std::size_t(ch.sampler)], property,
+                               c_at + " (sampler " + std::to_string(ch.sampler) + ")")});
+  }
+  return result;
+}
+
+// Checks every animation, lists them in the scene, and poses the nodes as the one `pose_`
+// names is at `pose_.seconds`.
+void GltfReader::pose_nodes() {
+  int chosen = -1;
+  const std::string& want = pose_.animation;
+  if (!want.empty()) {
+    if (model_.animations.empty()) fail("has no animations (asked for '" + one_line(want) + "')");
+    const bool digits = want.find_first_not_of("0123456789") == std::string::npos;
+    for (std::size_t i = 0; i < model_.animations.size() && chosen < 0; ++i)
+      if (model_.animations[i].name == want) chosen = int(i);
+    if (chosen < 0 && digits && want.size() < 10 &&
+        std::stoul(want) < model_.animations.size())
+      chosen = int(std::stoul(want));
+    if (chosen < 0) {
+      std::string names;
+      for (std::size_t i = 0; i < model_.animations.size() && i < 8; ++i)
+        names += (i ? ", " : "") + named(int(i), model_.animations[i].name);
+      fail("has no animation '" + one_line(want) + "' (its " +
+           std::to_string(model_.animations.size()) + ": " + names +
+           (model_.animations.size() > 8 ? ", ..." : "") + ")");
+    }
+  } else if (!model_.animations.empty()) {
+    chosen = 0;
+  }
+  if (!std::isfinite(pose_.seconds)) fail("the time " + fmt(pose_.seconds) + " is not finite");
+  for (std::size_t i = 0; i < model_.animations.size(); ++i) {
+    const Animation a = animation(int(i));
+    scene_.animations.push_back({a.name, a.duration()});
+    if (int(i) != chosen) continue;
+    posed_.resize(model_.nodes.size());
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) posed_[n] = node_trs(model_.nodes[n]);
+    a.pose(pose_.seconds, posed_);
+  }
+  scene_.animation = chosen;
+  scene_.seconds = pose_.seconds;
 }
 
 void GltfReader::walk(int root, const Mat4& parent) {
@@ -745,7 +886,8 @@ void GltfReader::walk(int root, const Mat4& parent) {
     if (++visits_ > kMaxGltfNodeVisits)
       fail("more than " + std::to_string(kMaxGltfNodeVisits) +
            " node instances (nodes shared by many parents)");
-    const Mat4 world = up * local_matrix(n, path_ + ": " + at);
+    const NodeTrs* posed = posed_.empty() ? nullptr : &posed_[std::size_t(node)];
+    const Mat4 world = up * local_matrix(n, posed, path_ + ": " + at);
     if (n.camera >= 0 && !have_camera_) set_camera(node, n.camera, world);
     if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
       add_light(node, it->second, world);
@@ -1029,8 +1171,8 @@ Scene GltfReader::read() {
     for (std::size_t i = 0; i < child.size(); ++i)
       if (!child[i]) roots.push_back(int(i));
   }
+  pose_nodes();
   for (const int r : roots) walk(r, kIdentity);
-  if (!model_.animations.empty()) warn_once("anim", "animations are ignored");
   if (scene_.meshes.empty())
     fail(scene_.degenerate_triangles
              ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"
@@ -1045,8 +1187,8 @@ Scene GltfReader::read() {
 
 }  // namespace
 
-Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy) {
-  return GltfReader(path, policy).read();
+Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose) {
+  return GltfReader(path, policy, pose).read();
 }
 
 }  // namespace rt2::io

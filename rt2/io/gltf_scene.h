@@ -21,6 +21,7 @@ constexpr std::size_t kMaxGltfNodeVisits = 1u << 18;  // node instances (a DAG c
 constexpr std::size_t kMaxGltfPrimitives = 1u << 16;  // primitive instances (one Mesh each)
 constexpr std::size_t kMaxGltfVertices = 1u << 26;    // all mesh instances together
 constexpr std::size_t kMaxGltfLights = 4096;          // light instances (none has a range)
+constexpr std::size_t kMaxGltfKeyValues = 1u << 26;   // keyframe numbers of all animations
 
 // Reads the glTF 2.0 file `path` (JSON or binary, told apart by its first bytes, "glTF"
 // for binary). Images are not decoded: a file image becomes a TextureDesc with its path
@@ -29,6 +30,10 @@ constexpr std::size_t kMaxGltfLights = 4096;          // light instances (none h
 // materials PBR materials, the first camera the scene's camera, KHR_lights_punctual lights
 // point lights; without a camera or lights the scene is framed as a bare OBJ is. The result
 // has passed Scene::validate(). Throws rt2::Error "path: ..." naming the element at fault.
-Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy);
+//
+// The nodes are posed as animation `pose.animation` (by name or index; the first when empty)
+// moves them at `pose.seconds`; every animation is checked, and listed in Scene::animations.
+Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy,
+                      const ScenePose& pose = {});
 
 }  // namespace rt2::io

@@ -63,14 +63,16 @@ auto guarded(const std::string& path, F&& load) -> decltype(load()) {
 
 }  // namespace
 
-Scene load_scene(const std::string& path, const AssetPolicy& policy) {
+Scene load_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose) {
   return guarded(path, [&] {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path, policy, pose);
+    if ((ext == ".toml" || ext == ".obj") && !pose.animation.empty())
+      error_at(path, 0, 0, "has no animations (asked for '" + one_line(pose.animation) + "')");
     if (ext == ".toml") return load_toml_scene(path, policy);
     if (ext == ".obj") return frame_obj(path, policy);
-    if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path, policy);
     error_at(path, 0, 0,
              (ext.empty() ? "no file extension" : "unknown file extension '" + ext + "'") +
                  "; expected a .toml scene, an .obj mesh or a .gltf/.glb glTF 2.0 scene");
@@ -85,8 +87,8 @@ Camera load_camera(const std::string& path) {
   return guarded(path, [&] { return io::read_toml_camera(path); });
 }
 
-Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy) {
-  return guarded(path, [&] { return read_gltf_scene(path, policy); });
+Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose) {
+  return guarded(path, [&] { return read_gltf_scene(path, policy, pose); });
 }
 
 Scene frame_obj(const std::string& obj_path, const AssetPolicy& policy) {

@@ -20,8 +20,11 @@ namespace rt2 {
 
 // Loads `path` by its extension (any case): a .toml scene file, a bare .obj mesh which is
 // framed automatically, or a .gltf/.glb glTF 2.0 scene, under `policy` (which the scene
-// keeps, Scene::assets). Throws rt2::Error with a one-line message on any problem.
-Scene load_scene(const std::string& path, const AssetPolicy& policy = {});
+// keeps, Scene::assets), posed as `pose` says (a glTF's animation at a time; a scene of
+// another format has none, and naming one is an error). Throws rt2::Error with a one-line
+// message on any problem.
+Scene load_scene(const std::string& path, const AssetPolicy& policy = {},
+                 const ScenePose& pose = {});
 
 // Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
 Scene load_toml_scene(const std::string& path, const AssetPolicy& policy = {});
@@ -33,8 +36,11 @@ Camera load_camera(const std::string& path);
 // Loads a glTF 2.0 scene, JSON (.gltf) or binary (.glb), told apart by its content
 // (scenes/FORMAT.md: what is read and how it maps). Without a camera or without lights it is
 // framed as frame_obj frames an OBJ (no ground plane). Buffer and image files are relative
-// to its folder; images are not decoded here (TextureDesc).
-Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy = {});
+// to its folder; images are not decoded here (TextureDesc). The nodes are posed as
+// animation `pose.animation` (name or index, "" the first) moves them at `pose.seconds`;
+// Scene::animations lists the file's animations.
+Scene load_gltf_scene(const std::string& path, const AssetPolicy& policy = {},
+                      const ScenePose& pose = {});
 
 // A bare OBJ, framed (rt2/io/framing.h): a camera looking at its bounding box from above,
 // in front and to the right, the whole box in view (Scene::framed_bounds records the box, so

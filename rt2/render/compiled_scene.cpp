@@ -34,15 +34,12 @@ void check_environment_fits(const std::string& file, const ImageHeader& header) 
 }  // namespace
 
 CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config, Isa isa) {
-  scene.validate();
+  CompiledScene c;
+  c.place(scene, config, isa);
   using Clock = std::chrono::steady_clock;
   const auto ms_since = [](Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
   };
-  CompiledScene c;
-  Clock::time_point t = Clock::now();
-  c.accel = Accel::build(scene, config, isa);
-  c.times.accel_ms = ms_since(t);
   c.materials = scene.materials;
   // Shadow rays pass physically based materials by their transmission (the kernel's
   // transmittance reads `transparency`; the pbr shading step never does).
@@ -52,7 +49,7 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
       m.transparency = m.transmission * (1.0f - m.metallic);
       pbr = true;
     }
-  t = Clock::now();
+  Clock::time_point t = Clock::now();
   if (pbr) split_sum(0.5f, 0.5f);  // the table is made here, not in the first frame
   c.pbr_surfaces.resize(c.materials.size());
   for (std::size_t i = 0; i < c.materials.size(); ++i)
@@ -85,19 +82,29 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
     c.environment = Environment::uniform(scene.ambient);
   }
   c.times.environment_ms = ms_since(t);
-  c.lights = scene.lights;
-  c.ambient = scene.ambient;
-  c.background = scene.background;
-  c.origin = scene.origin;
-  c.offset_scale = scene.size();
-  c.features = scene.features();
-  c.light_paths.reserve(c.lights.size());
-  for (std::size_t i = 0; i < c.lights.size(); ++i) {
-    c.light_paths.emplace_back(c.lights[i], i, c.offset_scale);
-    if (c.lights[i].has_range()) c.light_path_bounds.grow(c.light_paths.back().bounds());
-  }
-  c.light_bvh.build(c.lights, 0);
   return c;
+}
+
+void CompiledScene::place(const Scene& scene, const BvhConfig& config, Isa isa) {
+  scene.validate();
+  const auto t = std::chrono::steady_clock::now();
+  accel = Accel::build(scene, config, isa);
+  times.accel_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  lights = scene.lights;
+  ambient = scene.ambient;
+  background = scene.background;
+  origin = scene.origin;
+  offset_scale = scene.size();
+  features = scene.features();
+  light_paths.clear();
+  light_paths.reserve(lights.size());
+  light_path_bounds = Aabb();
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    light_paths.emplace_back(lights[i], i, offset_scale);
+    if (lights[i].has_range()) light_path_bounds.grow(light_paths.back().bounds());
+  }
+  light_bvh.build(lights, 0);
 }
 
 LightBvh::BuildTimes CompiledScene::move_lights(double seconds, int threads) {

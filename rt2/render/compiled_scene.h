@@ -67,6 +67,13 @@ struct CompiledScene {
   // scene.assets.max_image_pixels, or the environment would not fit in memory).
   static CompiledScene compile(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
 
+  // What changes when `scene` is this compiled scene's file posed at another time (an
+  // animated glTF): the trees, built with `config` for `isa` as compile builds them, the
+  // lights and their tree, the origin, the offset scale and the features, each as compile
+  // makes it from `scene`. Materials, textures and the environment are kept (a pose does not
+  // change them). Never call it while a frame renders.
+  void place(const Scene& scene, const BvhConfig& config, Isa isa);
+
   // Moves every light to where its path is at `seconds` (light_path.h) and rebuilds
   // the light tree with `threads` OpenMP threads (<= 0: all). Lights are the one part of a
   // compiled scene that changes between frames; never call it while a frame renders.

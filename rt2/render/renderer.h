@@ -45,6 +45,9 @@ class Renderer {
   }
 
   const CompiledScene& scene() const { return scene_; }
+  // The camera of the next frames (an animated scene's next pose; the compiled scene it
+  // refers to is updated in place, CompiledScene::place).
+  void set_camera(const Camera& camera) { view_.camera = camera; }
   const Camera& camera() const { return view_.camera; }
   const RenderSettings& settings() const { return view_.settings; }
   const std::vector<SubpixelOffset>& offsets() const { return offsets_; }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rt2/base/asset_policy.h"
+#include "rt2/scene/animation.h"
 #include "rt2/scene/camera.h"
 #include "rt2/scene/features.h"
 #include "rt2/geometry/plane.h"
@@ -74,6 +75,11 @@ struct Scene {
   std::vector<Mesh> meshes;
 
   std::size_t degenerate_triangles = 0;  // dropped by the loaders, reported by rt2cpr
+  // The animations of the file the scene was loaded from (glTF; none: it does not move),
+  // and the pose it was loaded in: animations[animation] at `seconds` (-1: none).
+  std::vector<AnimationSummary> animations;
+  int animation = -1;
+  double seconds = 0.0;
 
   // Adds a material and returns its index.
   std::uint32_t add_material(const std::string& name, const Material& m);

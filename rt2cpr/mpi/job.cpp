@@ -57,12 +57,13 @@ void Job::check(const Options& o) const {
                      "cannot stop between passes; rt2cpr can");
 }
 
-void Job::render_frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image) {
+void Job::render_frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image,
+                        const FrameSink& each) {
   all_or_none([&] {
     if (leader()) image = rt2::Image(o.render.width, o.render.height);
   });
   try {
-    frames(o, setup, report, image);
+    frames(o, setup, report, image, each);
   } catch (...) {
     stop(failure_message());
   }
@@ -89,7 +90,8 @@ void Job::stop(const std::string& failure) const {
   session_.abort(1);
 }
 
-void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image) {
+void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image,
+                 const FrameSink& each) {
   const Between watch = leader() ? Between(watch_for_errors) : Between();
   const int threads = rt2::effective_threads(o.schedule);
   Peer me;
@@ -121,9 +123,13 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
   for (int f = 0; f < o.frames; ++f) {
     bar.start_frame(f, o.frames);
     const auto start = Clock::now();
+    // The frame's pose of an animated scene, by every rank alike, inside the frame's time.
+    std::optional<RenderSetup::PoseTimes> posed;
+    if (f > 0) all_or_none([&] { posed = setup.pose(o, f); });
+    if (posed && leader()) report.add_pose(posed->load_ms, posed->place_ms);
     // The frame's lights, moved by every rank alike, inside the frame's time.
     if (o.animate_lights) {
-      const rt2::LightBvh::BuildTimes t = setup.compiled.move_lights(f / 30.0, threads);
+      const rt2::LightBvh::BuildTimes t = setup.compiled.move_lights(frame_seconds(o, f), threads);
       if (leader()) report.add_light_update(t);
     }
     const auto progress = [&](int in, int n) { bar.update(in, n); };
@@ -146,6 +152,7 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
     bar.end_frame();
     report.add_frame(frame, o.render.passes);
     if (!o.quiet && o.frames > 1) std::printf("frame %d: %.2f ms\n", f + 1, frame.ms);
+    each(f, image);
   }
   report.set_ranks(std::move(ranks));
 }

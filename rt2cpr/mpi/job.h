@@ -10,6 +10,7 @@
 
 #include "rt2/image/image.h"
 #include "rt2cpr/failure.h"
+#include "rt2cpr/frame_files.h"
 #include "rt2cpr/mpi/agreement.h"
 #include "rt2cpr/mpi/session.h"
 #include "rt2cpr/mpi/stop_notice.h"
@@ -50,15 +51,18 @@ class Job {
 
   // Renders the frames of `o` with every rank, each frame's tiles handed out by rank 0
   // (root_frame.h, worker_frame.h), adding each frame to `report` and, at the end, each
-  // rank's figures; on rank 0, the last frame into `image`. A failure ends the job here.
-  void render_frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image);
+  // rank's figures; an animated scene posed by every rank before each frame; on rank 0,
+  // each frame into `image`, then given to `each`. A failure ends the job here.
+  void render_frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image,
+                     const FrameSink& each);
 
   // Rank 0 ends the job with `status` (MPI_Abort); another rank returns it, and then waits
   // at MPI_Finalize to be ended.
   int fail(int status) const;
 
  private:
-  void frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image);
+  void frames(const Options& o, RenderSetup& setup, Report& report, rt2::Image& image,
+              const FrameSink& each);
   [[noreturn]] void stop(const std::string& failure) const;
 
   Session session_;

@@ -21,9 +21,13 @@ bool same_point(const rt2::vec4& a, const rt2::vec4& b) {
 }  // namespace
 
 RenderWorker::RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown)
-    : base_(std::move(scene)), options_(options), shown_cb_(std::move(shown)) {
+    : base_(std::move(scene)),
+      posed_seconds_(options.pose.seconds),
+      options_(options),
+      shown_cb_(std::move(shown)) {
   ViewRequest first;
   first.camera = base_.camera;
+  first.seconds = options.pose.seconds;
   first.lights = options.lights;
   compile_for(first, true);
   thread_ = std::jthread([this](std::stop_token quit) { run(quit); });
@@ -56,11 +60,20 @@ std::optional<RenderWorker::Failure> RenderWorker::take_error() {
   return std::exchange(error_, std::nullopt);
 }
 
-// The scene with the request's lights, compiled where the request's camera is (a still),
-// or wherever it was last compiled (a moving frame after a change of lights).
+// The scene at the request's time with its lights, compiled where the request's camera is
+// (a still), or wherever it was last compiled (a moving frame after a change of lights or
+// time; a change of time alone places the posed scene in the compiled one).
 void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
+  const bool time_changed = base_.animation >= 0 && r.seconds != posed_seconds_;
+  if (time_changed) {
+    Options at = options_;
+    at.pose.seconds = r.seconds;
+    base_ = load_scene(at);
+    posed_seconds_ = r.seconds;
+  }
   const bool lights_changed = r.lights != compiled_lights_;
-  if (compiled_ && !lights_changed && (!at_camera || same_point(centre_, r.camera.position())))
+  if (compiled_ && !lights_changed && !time_changed &&
+      (!at_camera || same_point(centre_, r.camera.position())))
     return;
   rt2::Scene scene = base_;
   set_lights(scene, r.lights, options_.light_range);
@@ -69,8 +82,13 @@ void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
     scene.camera.translate(centre_ - r.camera.position());
   }
   const rt2::vec4 centre = scene.camera.position();
-  auto compiled = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));
-  compiled_ = std::move(compiled);
+  if (compiled_ && !at_camera && !lights_changed) {
+    scene.validate();
+    rt2::recenter_on_camera(scene);
+    compiled_->place(scene, options_.bvh, options_.isa);
+  } else {
+    compiled_ = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));
+  }
   centre_ = centre;
   compiled_lights_ = r.lights;
 }

@@ -36,6 +36,7 @@ struct ViewRequest {
   rt2::RenderSettings settings;  // the converged image's: size, samples, depth ...
   rt2::Schedule schedule;
   int lights = -1;               // total lights (rt2cpr/scene_setup.h set_lights); -1: the scene's
+  double seconds = 0.0;          // an animated scene's time (Options::pose); else ignored
   bool moving = false;           // one quick frame instead of the converged image
   int scale = 1;                 // moving frames: width and height divided by this, >= 1
   // Changed by the window whenever anything above changes; a request with the generation
@@ -62,7 +63,9 @@ class RenderWorker {
   // (rt2cpr/scene_setup.h load_scene); its lights are set per request. `options`: the BVH, the
   // instruction set, the light range and the display mapping. Compiles the scene with
   // options.lights at its camera before the thread starts, so that a scene that cannot be
-  // rendered throws rt2::Error here. `shown` is called from the worker's thread after every
+  // rendered throws rt2::Error here. A request at another time poses an animated scene
+  // again: loaded at that time, placed (CompiledScene::place) for a moving frame, compiled
+  // for a still. `shown` is called from the worker's thread after every
   // finished image (to wake the window).
   RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown);
   ~RenderWorker();  // drops the pass under way and joins the thread
@@ -87,7 +90,8 @@ class RenderWorker {
   void compile_for(const ViewRequest& r, bool at_camera);
   void publish(const rt2::Film& film, Shown&& s);
 
-  const rt2::Scene base_;
+  rt2::Scene base_;  // the options' scene, posed at posed_seconds_ (owned by the worker thread)
+  double posed_seconds_;
   const Options options_;
   const std::function<void()> shown_cb_;
 

@@ -64,6 +64,9 @@ class Viewer {
         script_(std::move(script)),
         screenshot_key_(screenshot_key),
         start_camera_(scene.camera),
+        animated_(scene.animation >= 0),
+        playing_(animated_),
+        seconds_(o.pose.seconds),
         fly_(start_camera_, speed_for(scene)),
         scaler_(o.interactive.target_fps) {
     controls_.settings = o.render;
@@ -95,6 +98,10 @@ class Viewer {
       pump_events(busy() ? 4 : 50);
       const double t = now();
       move_camera(t - last);
+      if (playing_) {  // an animated scene plays in real time
+        seconds_ += t - last;
+        changed();
+      }
       last = t;
       ask_worker(t);
       take_image(t);
@@ -174,6 +181,18 @@ class Viewer {
             std::fputs(fly_.toml().c_str(), stdout);
             std::fflush(stdout);
             break;
+          case SDLK_SPACE:  // play or pause an animated scene
+            if (!animated_) break;
+            playing_ = !playing_;
+            changed();
+            break;
+          case SDLK_COMMA:  // a frame (1 / --fps) back or on, paused
+          case SDLK_PERIOD:
+            if (!animated_) break;
+            playing_ = false;
+            seconds_ += (e.key.keysym.sym == SDLK_COMMA ? -1.0 : 1.0) / o_.fps;
+            changed();
+            break;
           case SDLK_F1:
             controls_.overlay = !controls_.overlay;
             redraw_ = std::max(redraw_, 1);
@@ -240,6 +259,7 @@ class Viewer {
     r.settings = controls_.settings;
     r.schedule = controls_.schedule;
     r.lights = controls_.lights;
+    r.seconds = seconds_;
     r.moving = moving;
     r.scale = scaler_.scale();
     r.generation = generation_;
@@ -361,6 +381,9 @@ class Viewer {
   std::optional<ScriptPlayer> script_;
   SDL_Keycode screenshot_key_;
   rt2::Camera start_camera_;
+  bool animated_;   // the scene has an animation, which plays (space: pause, ',' '.': step)
+  bool playing_;
+  double seconds_;  // the animation's time, from --time
   FlyCamera fly_;
   ResolutionScaler scaler_;
   Controls controls_;

@@ -864,6 +864,108 @@ def gltf_assets():
           gltf=json.dumps(draco))
 
 
+# ---- glTF animations -------------------------------------------------------------------------
+
+def gltf_animation(channels, samplers, times=(0.0, 1.0), values=(0, 0, 0, 1, 2, 3),
+                   values_type="VEC3", values_component=5126, nodes=None, times_component=5126):
+    """The one-triangle glTF with an animation: accessor 1 holds `times`, accessor 2 `values`
+    (floats unless `values_component` says otherwise)."""
+    import math
+    import struct
+    positions = (0, 0, 0, 1, 0, 0, 0, 1, 0)
+    d, bin_ = gltf_json(positions=positions, nodes=nodes)
+    t = b"".join(struct.pack("<f" if times_component == 5126 else "<H",
+                             x if times_component == 5126 else int(x)) for x in times)
+    while len(t) % 4:
+        t += b"\0"
+    fmt = {5126: "<f", 5120: "<b", 5122: "<h"}[values_component]
+    v = b"".join(struct.pack(fmt, x) for x in values)
+    while len(v) % 4:
+        v += b"\0"
+    t_off = len(bin_)
+    bin_ = bin_ + t + v
+    width = {"VEC3": 3, "VEC4": 4, "SCALAR": 1}[values_type]
+    d["bufferViews"] += [{"buffer": 0, "byteOffset": t_off, "byteLength": len(t)},
+                         {"buffer": 0, "byteOffset": t_off + len(t), "byteLength": len(v)}]
+    d["accessors"] += [{"bufferView": 1, "componentType": times_component, "count": len(times),
+                        "type": "SCALAR"},
+                       dict({"bufferView": 2, "componentType": values_component,
+                             "count": len(values) // width, "type": values_type},
+                            **({"normalized": True} if values_component != 5126 else {}))]
+    import base64
+    d["buffers"] = [{"byteLength": len(bin_), "uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(bin_).decode()}]
+    d["animations"] = [{"channels": channels, "samplers": samplers}]
+    import json
+    return json.dumps(d, indent=1)
+
+
+def gltf_animations():
+    """Malformed animation data: one clear line each; a weights channel only warns."""
+    nan = float("nan")
+    move = [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]
+    turn = [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}]
+    linear = [{"input": 1, "output": 2}]
+    ok("gltf_anim_translation", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_animation(move, linear))
+    for name, message, kw in [
+        ("gltf_anim_times_not_increasing", "key times must increase",
+         dict(times=(0.0, 1.0, 1.0), values=(0,) * 9)),
+        ("gltf_anim_times_decreasing", "input key 1 (0.5 s) does not come after key 0",
+         dict(times=(1.0, 0.5), values=(0,) * 6)),
+        ("gltf_anim_time_nan", "input key 1 is nan", dict(times=(0.0, nan), values=(0,) * 6)),
+        ("gltf_anim_value_nan", "output element 1 holds nan",
+         dict(values=(0, 0, 0, 1, nan, 3))),
+        ("gltf_anim_value_infinite", "output element 0 holds inf",
+         dict(values=(float("inf"), 0, 0, 1, 2, 3))),
+        ("gltf_anim_output_count", "output has 1 elements for 2 keys, expected 2",
+         dict(values=(0, 0, 0))),
+        ("gltf_anim_times_integers", "input", dict(times_component=5123)),
+        ("gltf_anim_no_keys", "accessors[1].count is 0", dict(times=(), values=())),
+    ]:
+        error(name, "gltf", message, gltf=gltf_animation(move, linear, **kw))
+    error("gltf_anim_cubic_count", "gltf", "(CUBICSPLINE: in-tangent, value, out-tangent per key)",
+          gltf=gltf_animation(move, [{"input": 1, "output": 2, "interpolation": "CUBICSPLINE"}]))
+    error("gltf_anim_interpolation_unknown", "gltf",
+          "animations[0].samplers[0].interpolation is 'BEZIER', expected one of",
+          gltf=gltf_animation(move, [{"input": 1, "output": 2, "interpolation": "BEZIER"}]))
+    error("gltf_anim_path_unknown", "gltf", "animations[0].channels[0].target.path is 'colour'",
+          gltf=gltf_animation([{"sampler": 0, "target": {"node": 0, "path": "colour"}}], linear))
+    error("gltf_anim_no_channels", "gltf", "animations[0].channels has 0 elements",
+          gltf=gltf_animation([], linear))
+    error("gltf_anim_node_out_of_range", "gltf", "node 9 does not exist",
+          gltf=gltf_animation([{"sampler": 0, "target": {"node": 9, "path": "scale"}}], linear))
+    error("gltf_anim_sampler_out_of_range", "gltf", "sampler 5 does not exist (1 samplers)",
+          gltf=gltf_animation([{"sampler": 5, "target": {"node": 0, "path": "scale"}}], linear))
+    error("gltf_anim_sampler_negative", "gltf", "animations[0].channels[0].sampler is -1",
+          gltf=gltf_animation([{"sampler": -1, "target": {"node": 0, "path": "scale"}}], linear))
+    error("gltf_anim_output_accessor_missing", "gltf", "accessor 7 does not exist",
+          gltf=gltf_animation(move, [{"input": 1, "output": 7}]))
+    error("gltf_anim_same_target_twice", "gltf", "is the target of an earlier channel",
+          gltf=gltf_animation(move + move, linear))
+    error("gltf_anim_node_with_matrix", "gltf", "has a matrix",
+          gltf=gltf_animation(move, linear,
+                              nodes=[{"mesh": 0, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0,
+                                                            0, 0, 0, 1]}]))
+    error("gltf_anim_zero_quaternion", "gltf", "output element 1 is a zero quaternion",
+          gltf=gltf_animation(turn, linear, values=(0, 0, 0, 1, 0, 0, 0, 0), values_type="VEC4"))
+    error("gltf_anim_rotation_vec3", "gltf", "output",
+          gltf=gltf_animation(turn, linear))
+    ok("gltf_anim_rotation_normalized_shorts", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_animation(turn, linear, values=(0, 0, 0, 32767, 0, 32767, 0, 0),
+                           values_type="VEC4", values_component=5122))
+    error("gltf_anim_rotation_shorts_not_normalized", "gltf", "integer rotations must be normalized",
+          gltf=gltf_animation(turn, linear, values=(0, 0, 0, 32767, 0, 32767, 0, 0),
+                              values_type="VEC4", values_component=5122).replace(
+                                  '"normalized": true', '"normalized": false'))
+    ok("gltf_anim_weights_still", "gltf", "warning: animated weights stay still\nfaces: 1\n",
+       gltf=gltf_animation([{"sampler": 0, "target": {"node": 0, "path": "weights"}}],
+                           [{"input": 1, "output": 2}], values=(0, 1), values_type="SCALAR"))
+    ok("gltf_anim_channel_without_node", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_animation([{"sampler": 0, "target": {"path": "translation"}}], linear))
+
+
+
 # ---- physically based materials and environments ------------------------------------------
 
 def pbr():
@@ -904,6 +1006,7 @@ def main():
     sizes()
     gltf()
     gltf_assets()
+    gltf_animations()
 
 
 if __name__ == "__main__":

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "rt2/image/image_io.h"
+#include "tests/rt2/io/animated_gltf.h"
 #include "tests/rt2cpr/cli_fixture.h"
 
 namespace rt2::test {
@@ -142,6 +143,21 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"glass_2_ranks_rank0_serves_tile_5", kGlass, 2, 5, 1, false},
                       Case{"glass_3_ranks_tile_16", kGlass, 3, 16, 1}),
     [](const ::testing::TestParamInfo<Case>& p) { return std::string(p.param.name); });
+
+TEST_F(Mpi, AnAnimatedSceneIsPosedByEveryRankFrameByFrameAsOneProcess) {
+  write("a.gltf", rt2::test::animated_gltf());
+  const std::string args = path("a.gltf") + " " + kSmall + " --tile 16 --frames 3 --fps 2";
+  ASSERT_EQ(run(args + " --quiet --output " + path("one_#.exr")).status, 0);
+  const Outcome job = run_command(mpirun(2, args + " --output " + path("job_#.exr")));
+  ASSERT_EQ(job.status, 0) << job.err;
+  EXPECT_EQ(count(job.out, "wrote 3 frames"), 1) << job.out;
+  for (const char* f : {"1", "2", "3"}) {
+    const Image a = read_image(path(std::string("one_") + f + ".exr")),
+                b = read_image(path(std::string("job_") + f + ".exr"));
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    EXPECT_EQ(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)), 0) << f;
+  }
+}
 
 // ---- input errors: one line, from rank 0 ---------------------------------------------------
 

@@ -14,6 +14,8 @@
 #include "rt2/base/error.h"
 #include "rt2cpr/scene_setup.h"
 #include "rt2cpr/viewer/fly_camera.h"
+#include "tests/rt2/io/animated_gltf.h"
+#include "tests/rt2/temp_dir.h"
 
 namespace rt2cpr::viewer {
 namespace {
@@ -135,6 +137,32 @@ TEST(RenderWorker, RequestsThatReplaceEachOtherMidPassEndInTheLastOnesFileRender
   w->request(request(o, fly.camera(), false, ++g));
   const Shown s = w.wait_for([&](const Shown& x) { return x.converged() && x.generation == g; });
   EXPECT_TRUE(identical(s.image, file_render(o, fly.camera(), -1, o.render)));
+}
+
+// An animated scene played (moving frames at advancing times), then still: the still is the
+// file render at its time (`rt2cpr --time`), and differs from the one at the start.
+TEST(RenderWorker, AnAnimatedSceneStillIsTheFileRenderAtItsTime) {
+  const rt2::test::TempDir dir("worker");
+  Options o = small_options();
+  o.scene = dir.write("a.gltf", rt2::test::animated_gltf());
+  o.pose.seconds = 0.25;
+  Worker w(o);
+  const rt2::Camera camera = load_scene(o).camera;
+  std::uint64_t g = 0;
+  for (const double t : {0.3, 0.45, 0.7}) {
+    ViewRequest r = request(o, camera, true, ++g);
+    r.seconds = t;
+    w->request(r);
+    w.wait_for([&](const Shown& s) { return s.moving && s.generation == g; });
+  }
+  ViewRequest r = request(o, camera, false, ++g);
+  r.seconds = 0.9;
+  w->request(r);
+  const Shown s = w.wait_for([&](const Shown& x) { return x.converged() && x.generation == g; });
+  Options at = o;
+  at.pose.seconds = 0.9;
+  EXPECT_TRUE(identical(s.image, file_render(at, camera, -1, o.render)));
+  EXPECT_FALSE(identical(s.image, file_render(o, camera, -1, o.render)));
 }
 
 // Settings and lights changed between requests: the still is the file render with them.
