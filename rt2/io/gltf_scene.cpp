@@ -384,8 +384,10 @@ MetallicRoughness from_specular_glossiness(const std::array<double, 3>& diffuse,
 // What a glTF file is read into, and from.
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const AssetPolicy& policy, const ScenePose& pose)
-      : path_(path), pose_(pose), model_(parse_model(path, policy, quantized_)) {
+  // `animate` false: the file's own node transforms and weights, whatever `pose` says.
+  GltfReader(const std::string& path, const AssetPolicy& policy, const ScenePose& pose,
+             bool animate = true)
+      : path_(path), pose_(pose), animate_(animate), model_(parse_model(path, policy, quantized_)) {
     scene_.assets = policy;
   }
 
@@ -401,20 +403,25 @@ class GltfReader {
   Accessor accessor(int index, const std::string& what, std::initializer_list<int> types,
                     int components) const;
 
-  Track track(const tinygltf::AnimationSampler& sampler, NodeProperty property,
+  Track track(const tinygltf::AnimationSampler& sampler, NodeProperty property, int targets,
               const std::string& at);
+  int morph_targets(int mesh_index, const std::string& at) const;
+  std::vector<double> morph_weights(int node, const std::string& at) const;
   Animation animation(int index);
   void pose_nodes();
   void walk(int root, const Mat4& parent);
-  void add_primitive(int mesh_index, int prim_index, const Mat4& world);
+  void add_primitive(int mesh_index, int prim_index, const Mat4& world,
+                     const std::vector<double>& weights);
   void set_camera(int node, int camera_index, const Mat4& world);
   void add_light(int node, const tinygltf::Value& ext, const Mat4& world);
-  void finish_lights();
+  void finish_lights(const Framing& frame);
+  Framing still_framing();
   std::uint32_t material(int index);
   std::uint32_t texture(int index, bool srgb, int tex_coord, const std::string& what);
 
   std::string path_;
   ScenePose pose_;
+  bool animate_;
   bool quantized_ = false;  // KHR_mesh_quantization: integer texture coordinates as declared
   tinygltf::Model model_;
   Scene scene_;
@@ -425,6 +432,7 @@ class GltfReader {
   std::vector<char> on_path_;  // nodes on the current walk (cycle check)
   std::vector<NodeTrs> posed_;  // per node, its transform as posed; empty: no animation
   std::size_t key_values_ = 0;  // keyframe numbers read, against kMaxGltfKeyValues
+  std::size_t morph_reads_ = 0;  // vertices of targets read, against kMaxGltfMorphReads
   std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0, triangles_ = 0;
   std::uint64_t memory_ = available_memory();  // what the triangles may take
   bool have_camera_ = false;
@@ -720,12 +728,14 @@ Mat4 local_matrix(const tinygltf::Node& n, const NodeTrs* posed, const std::stri
   return matrix_of(trs);
 }
 
-// The keys of `sampler` for a node's `property`, checked: times finite and strictly
-// increasing, one value (three for a cubic spline) per time, every number finite.
+// The keys of `sampler` for a node's `property` (`targets`: its mesh's morph target count,
+// for weights), checked: times finite and strictly increasing, one value (three for a cubic
+// spline) per time, every number finite.
 Track GltfReader::track(const tinygltf::AnimationSampler& sampler, NodeProperty property,
-                        const std::string& at) {
+                        int targets, const std::string& at) {
   Track t;
   t.property = property;
+  t.width = key_width(property, targets);
   if (sampler.interpolation == "STEP")
     t.interpolation = Interpolation::step;
   else if (sampler.interpolation == "CUBICSPLINE")
@@ -733,25 +743,32 @@ Track GltfReader::track(const tinygltf::AnimationSampler& sampler, NodeProperty 
   else if (sampler.interpolation != "LINEAR")
     fail(at + ": interpolation '" + one_line(sampler.interpolation) + "' is not one of glTF's");
   const Accessor in = accessor(sampler.input, at + " input", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 1);
-  const int width = t.width();
-  // Rotations may be normalized integers (glTF 2.0 3.11); positions and scales are floats.
+  const std::size_t width = std::size_t(t.width);
+  // Rotations and weights may be normalized integers (glTF 2.0 3.11); positions and scales
+  // are floats. Weights are scalars, `width` of them a key.
+  const bool integers = property == NodeProperty::rotation || property == NodeProperty::weights;
   const Accessor out =
-      property == NodeProperty::rotation
-          ? accessor(sampler.output, at + " output",
-                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                     4)
-          : accessor(sampler.output, at + " output", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
+      integers ? accessor(sampler.output, at + " output",
+                          {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                          property == NodeProperty::weights ? 1 : 4)
+               : accessor(sampler.output, at + " output", {TINYGLTF_COMPONENT_TYPE_FLOAT}, 3);
   if (out.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !out.normalized)
-    fail(at + ": output: integer rotations must be normalized");
+    fail(at + ": output: integer " + (property == NodeProperty::weights ? "weights" : "rotations") +
+         " must be normalized");
   if (in.count == 0) fail(at + ": input has no keys");
   const std::size_t per_key = t.interpolation == Interpolation::cubic_spline ? 3 : 1;
-  if (out.count != in.count * per_key)
+  const std::size_t elements_per_key = per_key * (property == NodeProperty::weights ? width : 1);
+  if (out.count != in.count * elements_per_key)
     fail(at + ": output has " + std::to_string(out.count) + " elements for " +
-         std::to_string(in.count) + " keys, expected " + std::to_string(in.count * per_key) +
-         (per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : ""));
-  key_values_ += in.count + out.count * std::size_t(width);
+         std::to_string(in.count) + " keys, expected " +
+         std::to_string(in.count * elements_per_key) +
+         (per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : "") +
+         (property == NodeProperty::weights
+              ? " (" + std::to_string(width) + " morph target weights per key)"
+              : ""));
+  key_values_ += in.count + in.count * per_key * width;
   if (key_values_ > kMaxGltfKeyValues)
     fail("its animations hold more than " + std::to_string(kMaxGltfKeyValues) +
          " keyframe numbers");
@@ -765,19 +782,24 @@ Track GltfReader::track(const tinygltf::AnimationSampler& sampler, NodeProperty 
            " s) does not come after key " + std::to_string(i - 1) + " (" +
            fmt(t.times[i - 1]) + " s); key times must increase");
   }
-  t.values.resize(out.count * std::size_t(width));
-  for (std::size_t i = 0; i < out.count; ++i) {
+  const std::size_t groups = in.count * per_key;  // groups of `width` numbers
+  t.values.resize(groups * width);
+  for (std::size_t g = 0; g < groups; ++g) {
     double length2 = 0;
-    for (int k = 0; k < width; ++k) {
-      const double v = out.get(i, k);
+    for (std::size_t k = 0; k < width; ++k) {
+      // a group is one element of a vector accessor, or `width` scalars
+      const double v = property == NodeProperty::weights ? out.get(g * width + k, 0)
+                                                         : out.get(g, int(k));
       if (!std::isfinite(v))
-        fail(at + ": output element " + std::to_string(i) + " holds " + fmt(v));
-      t.values[i * std::size_t(width) + std::size_t(k)] = v;
+        fail(at + ": output element " +
+             std::to_string(property == NodeProperty::weights ? g * width + k : g) + " holds " +
+             fmt(v));
+      t.values[g * width + k] = v;
       length2 += v * v;
     }
-    const bool is_value = per_key == 1 || i % 3 == 1;  // not a cubic spline's tangent
+    const bool is_value = per_key == 1 || g % 3 == 1;  // not a cubic spline's tangent
     if (property == NodeProperty::rotation && is_value && !(length2 > 0))
-      fail(at + ": output element " + std::to_string(i) + " is a zero quaternion");
+      fail(at + ": output element " + std::to_string(g) + " is a zero quaternion");
   }
   return t;
 }
@@ -806,13 +828,25 @@ Animation GltfReader::animation(int index) {
       property = NodeProperty::rotation;
     else if (ch.target_path == "scale")
       property = NodeProperty::scale;
+    else if (ch.target_path == "weights")
+      property = NodeProperty::weights;
     else {
       warn_once("anim-" + ch.target_path,
                 "animated " + one_line(ch.target_path) + " stay still (rt2 animates node "
-                "translation, rotation and scale)");
+                "translation, rotation, scale and morph target weights)");
       continue;
     }
     const tinygltf::Node& node = model_.nodes[std::size_t(ch.target_node)];
+    int morph = 0;
+    if (property == NodeProperty::weights) {
+      if (node.mesh < 0 || std::size_t(node.mesh) >= model_.meshes.size())
+        fail(c_at + ": animates the weights of node " + named(ch.target_node, node.name) +
+             ", which has no mesh");
+      morph = morph_targets(node.mesh, c_at);
+      if (morph == 0)
+        fail(c_at + ": animates the weights of node " + named(ch.target_node, node.name) +
+             ", whose mesh has no morph targets");
+    }
     if (!node.matrix.empty())
       fail(c_at + ": node " + named(ch.target_node, node.name) +
            " has a matrix, and glTF allows only nodes without one to be animated");
@@ -822,7 +856,7 @@ Animation GltfReader::animation(int index) {
            " is the target of an earlier channel; glTF allows one per animation");
     targets.emplace_back(ch.target_node, property);
     result.channels.push_back(
-        {ch.target_node, track(a.samplers[std::size_t(ch.sampler)], property,
+        {ch.target_node, track(a.samplers[std::size_t(ch.sampler)], property, morph,
                                c_at + " (sampler " + std::to_string(ch.sampler) + ")")});
   }
   return result;
@@ -852,6 +886,7 @@ void GltfReader::pose_nodes() {
   } else if (!model_.animations.empty()) {
     chosen = 0;
   }
+  if (!animate_) chosen = -1;
   if (!std::isfinite(pose_.seconds)) fail("the time " + fmt(pose_.seconds) + " is not finite");
   for (std::size_t i = 0; i < model_.animations.size(); ++i) {
     const Animation a = animation(int(i));
@@ -863,6 +898,41 @@ void GltfReader::pose_nodes() {
   }
   scene_.animation = chosen;
   scene_.seconds = pose_.seconds;
+}
+
+// The morph target count of mesh `mesh_index` (every primitive must have the same).
+int GltfReader::morph_targets(int mesh_index, const std::string& at) const {
+  const tinygltf::Mesh& m = model_.meshes[std::size_t(mesh_index)];
+  const std::size_t n = m.primitives.empty() ? 0 : m.primitives[0].targets.size();
+  for (const tinygltf::Primitive& p : m.primitives)
+    if (p.targets.size() != n)
+      fail(at + ": mesh " + named(mesh_index, m.name) +
+           ": its primitives have different numbers of morph targets");
+  if (n > kMaxGltfMorphTargets)
+    fail(at + ": mesh " + named(mesh_index, m.name) + " has " + std::to_string(n) +
+         " morph targets, more than " + std::to_string(kMaxGltfMorphTargets));
+  return int(n);
+}
+
+// The morph target weights of node `node`'s mesh as posed: animated, else the node's, else
+// the mesh's, else zeros; one per target.
+std::vector<double> GltfReader::morph_weights(int node, const std::string& at) const {
+  const tinygltf::Node& n = model_.nodes[std::size_t(node)];
+  const tinygltf::Mesh& m = model_.meshes[std::size_t(n.mesh)];
+  const std::size_t targets = std::size_t(morph_targets(n.mesh, at));
+  const auto check = [&](const std::vector<double>& w, const std::string& whose) {
+    if (w.size() != targets)
+      fail(at + ": " + whose + " has " + std::to_string(w.size()) + " morph target weights, its mesh " +
+           std::to_string(targets) + " targets");
+    for (const double x : w)
+      if (!std::isfinite(x)) fail(at + ": " + whose + " has a weight of " + fmt(x));
+    return w;
+  };
+  if (!posed_.empty() && !posed_[std::size_t(node)].weights.empty())
+    return posed_[std::size_t(node)].weights;  // checked where the track was read
+  if (!n.weights.empty()) return check(n.weights, "the node");
+  if (!m.weights.empty()) return check(m.weights, "mesh " + named(n.mesh, m.name));
+  return std::vector<double>(targets, 0.0);
 }
 
 void GltfReader::walk(int root, const Mat4& parent) {
@@ -896,8 +966,9 @@ void GltfReader::walk(int root, const Mat4& parent) {
         fail(at + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
              std::to_string(model_.meshes.size()) + " meshes)");
       if (n.skin >= 0) warn_once("skin", "skins are not supported; meshes are drawn unskinned");
+      const std::vector<double> weights = morph_weights(node, at);
       for (std::size_t p = 0; p < model_.meshes[std::size_t(n.mesh)].primitives.size(); ++p)
-        add_primitive(n.mesh, int(p), world);
+        add_primitive(n.mesh, int(p), world, weights);
     }
     on_path_[std::size_t(node)] = 1;
     stack.push_back({node, world, 0});
@@ -917,7 +988,8 @@ void GltfReader::walk(int root, const Mat4& parent) {
   }
 }
 
-void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world) {
+void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world,
+                               const std::vector<double>& weights) {
   const tinygltf::Mesh& gm = model_.meshes[std::size_t(mesh_index)];
   const tinygltf::Primitive& prim = gm.primitives[std::size_t(prim_index)];
   const std::string at =
@@ -936,8 +1008,6 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   if (++primitives_ > kMaxGltfPrimitives)
     fail("more than " + std::to_string(kMaxGltfPrimitives) +
          " primitive instances (meshes of nodes shared by many parents?)");
-  if (!prim.targets.empty())
-    warn_once("morph", at + ": morph targets are ignored; meshes are drawn in their base shape");
   const std::uint32_t scene_material = material(prim.material);
   const UvTransform uv_transform =
       prim.material >= 0 ? uv_transforms_[std::size_t(prim.material)] : UvTransform{};
@@ -954,11 +1024,54 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     fail("more than " + std::to_string(kMaxGltfVertices) + " vertices in all mesh instances");
   vertices_ += pos.count;
 
+  // Morph targets (glTF 2.0 3.7.2.2): POSITION and NORMAL are the base plus the sum of
+  // weight x target, in the mesh's own space; a target of weight 0 is not read.
+  struct Morph {
+    double weight;
+    std::optional<Accessor> position, normal;
+  };
+  std::vector<Morph> morphs;
+  for (std::size_t k = 0; k < prim.targets.size(); ++k) {
+    if (weights[k] == 0.0) continue;
+    Morph m{weights[k], {}, {}};
+    const std::string t_at = at + " target " + std::to_string(k);
+    for (const auto& [name, index] : prim.targets[k]) {
+      if (name != "POSITION" && name != "NORMAL") continue;  // TEXCOORD_n, TANGENT: unused
+      const Accessor a = accessor(index, t_at + " " + name,
+                                  {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                   TINYGLTF_COMPONENT_TYPE_SHORT},
+                                  3);
+      if (a.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized)
+        fail(t_at + " " + name + ": integer displacements must be normalized");
+      if (a.count != pos.count)
+        fail(t_at + " " + name + " has " + std::to_string(a.count) + " elements, POSITION " +
+             std::to_string(pos.count));
+      (name == "POSITION" ? m.position : m.normal) = a;
+    }
+    morph_reads_ += pos.count;
+    if (morph_reads_ > kMaxGltfMorphReads)
+      fail("its morph targets of non-zero weight, over all mesh instances, hold more than " +
+           std::to_string(kMaxGltfMorphReads) + " vertices");
+    morphs.push_back(std::move(m));
+  }
+  // Element i of `base` with the targets' `displacement` (position or normal) added.
+  const auto morphed = [&](const Accessor& base, std::optional<Accessor> Morph::*displacement,
+                           std::size_t i) {
+    Vec3d v{base.get(i, 0), base.get(i, 1), base.get(i, 2)};
+    for (const Morph& m : morphs)
+      if (const std::optional<Accessor>& d = m.*displacement) {
+        v.x += m.weight * d->get(i, 0);
+        v.y += m.weight * d->get(i, 1);
+        v.z += m.weight * d->get(i, 2);
+      }
+    return v;
+  };
+
   Mesh mesh;
   mesh.name = fs::path(path_).filename().string() + ":" + at;
   mesh.positions.reserve(pos.count);
   for (std::size_t i = 0; i < pos.count; ++i) {
-    const Vec3d p = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
+    const Vec3d p = transform_point(world, morphed(pos, &Morph::position, i));
     if (!fits_float(p))
       fail(at + ": POSITION " + std::to_string(i) + " is not a finite float (" +
            fmt(pos.get(i, 0)) + " " + fmt(pos.get(i, 1)) + " " + fmt(pos.get(i, 2)) +
@@ -981,7 +1094,7 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     const double sign = det < 0 ? -1.0 : 1.0;
     mesh.normals.reserve(nrm.count);
     for (std::size_t i = 0; i < nrm.count; ++i) {
-      Vec3d n = transform_vector(normal_matrix, {nrm.get(i, 0), nrm.get(i, 1), nrm.get(i, 2)});
+      Vec3d n = transform_vector(normal_matrix, morphed(nrm, &Morph::normal, i));
       n = normalized({n.x * sign, n.y * sign, n.z * sign});
       if (!finite3(n)) {  // a zero normal, or a singular transform: flat shading
         mesh.normals.clear();
@@ -1116,8 +1229,7 @@ void GltfReader::add_light(int node, const tinygltf::Value& ext, const Mat4& wor
 // light to the centre of the scene's bounds (at least R, half their diagonal, so that a light
 // inside the scene does not blow up). A directional light becomes a point light 1000 R away
 // against its direction, with its lux as intensity.
-void GltfReader::finish_lights() {
-  const Framing frame = framing_of(path_, scene_.bounds(), "scene");
+void GltfReader::finish_lights(const Framing& frame) {
   for (const PendingLight& p : lights_) {
     const tinygltf::Light& g = model_.lights[std::size_t(p.index)];
     const std::string at = "light " + named(p.index, g.name);
@@ -1152,6 +1264,21 @@ void GltfReader::finish_lights() {
   }
 }
 
+// The framing of the scene's bounds (a framed camera, the lights' intensities, the
+// framing light). Those of the file's own node transforms when it is posed by an
+// animation: what a pose frames must not move from one time to the next.
+Framing GltfReader::still_framing() {
+  if (scene_.animation < 0) return framing_of(path_, scene_.bounds(), "scene");
+  Aabb bounds = scene_.bounds();
+  try {
+    const WarningsOff quiet;  // this reading's warnings were the first one's
+    bounds = GltfReader(path_, scene_.assets, pose_, false).read().bounds();
+  } catch (const Error&) {
+    // unposed, the file has nothing to frame (every triangle degenerate ...): this pose's
+  }
+  return framing_of(path_, bounds, "scene");
+}
+
 Scene GltfReader::read() {
   if (!model_.asset.version.starts_with("2."))
     fail("asset.version is '" + one_line(model_.asset.version) + "'; rt2 reads glTF 2.0 only");
@@ -1177,9 +1304,9 @@ Scene GltfReader::read() {
     fail(scene_.degenerate_triangles
              ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"
              : "no triangles in the scene");
-  const Framing frame = framing_of(path_, scene_.bounds(), "scene");
+  const Framing frame = still_framing();
   if (!have_camera_) frame_camera(scene_, frame);
-  finish_lights();
+  finish_lights(frame);
   if (scene_.lights.empty()) scene_.lights.push_back(framing_light(frame));
   validate(path_, scene_);
   return std::move(scene_);

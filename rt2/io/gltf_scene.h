@@ -22,6 +22,8 @@ constexpr std::size_t kMaxGltfPrimitives = 1u << 16;  // primitive instances (on
 constexpr std::size_t kMaxGltfVertices = 1u << 26;    // all mesh instances together
 constexpr std::size_t kMaxGltfLights = 4096;          // light instances (none has a range)
 constexpr std::size_t kMaxGltfKeyValues = 1u << 26;   // keyframe numbers of all animations
+constexpr std::size_t kMaxGltfMorphTargets = 1024;    // morph targets of a mesh
+constexpr std::size_t kMaxGltfMorphReads = 1u << 27;  // target vertices read, all instances
 
 // Reads the glTF 2.0 file `path` (JSON or binary, told apart by its first bytes, "glTF"
 // for binary). Images are not decoded: a file image becomes a TextureDesc with its path

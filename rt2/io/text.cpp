@@ -64,7 +64,16 @@ std::string location(const std::string& file, std::size_t line, std::size_t colu
   throw Error(one_line(location(file, line, column) + ": " + msg));
 }
 
-void warn(const std::string& msg) { std::cerr << "warning: " << one_line(msg) << '\n'; }
+namespace {
+thread_local int warnings_off = 0;
+}  // namespace
+
+void warn(const std::string& msg) {
+  if (warnings_off == 0) std::cerr << "warning: " << one_line(msg) << '\n';
+}
+
+WarningsOff::WarningsOff() { ++warnings_off; }
+WarningsOff::~WarningsOff() { --warnings_off; }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);

@@ -37,8 +37,19 @@ std::string location(const std::string& file, std::size_t line, std::size_t colu
 [[noreturn]] void error_at(const std::string& file, std::size_t line, std::size_t column,
                            const std::string& msg);
 
-// Prints "warning: msg" to stderr, made one line.
+// Prints "warning: msg" to stderr, made one line (nothing while a WarningsOff lives on
+// this thread).
 void warn(const std::string& msg);
+
+// While one exists, warn() prints nothing on this thread: for a second reading of a file
+// whose first reading has warned.
+class WarningsOff {
+ public:
+  WarningsOff();
+  ~WarningsOff();
+  WarningsOff(const WarningsOff&) = delete;
+  WarningsOff& operator=(const WarningsOff&) = delete;
+};
 
 // Levenshtein distance, for "did you mean" hints (keys and names are short).
 std::size_t edit_distance(std::string_view a, std::string_view b);

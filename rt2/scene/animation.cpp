@@ -37,7 +37,7 @@ void slerp(const double* key_a, const double* key_b, double u, double* out) {
 }  // namespace
 
 void sample(const Track& track, double seconds, double* out) {
-  const int w = track.width();
+  const int w = track.width;
   const std::size_t keys = track.times.size();
   const bool cubic = track.interpolation == Interpolation::cubic_spline;
   // Key k's value (the middle group of a cubic key).
@@ -96,6 +96,10 @@ void Animation::pose(double seconds, std::vector<NodeTrs>& trs) const {
       case NodeProperty::translation: sample(c.track, seconds, n.translation.data()); break;
       case NodeProperty::rotation: sample(c.track, seconds, n.rotation.data()); break;
       case NodeProperty::scale: sample(c.track, seconds, n.scale.data()); break;
+      case NodeProperty::weights:
+        n.weights.resize(std::size_t(c.track.width));
+        sample(c.track, seconds, n.weights.data());
+        break;
     }
   }
 }

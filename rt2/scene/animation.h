@@ -15,29 +15,36 @@
 namespace rt2 {
 
 enum class Interpolation { step, linear, cubic_spline };
-enum class NodeProperty { translation, rotation, scale };
+enum class NodeProperty { translation, rotation, scale, weights };
 
 // One property of one node over time.
 struct Track {
   NodeProperty property = NodeProperty::translation;
   Interpolation interpolation = Interpolation::linear;
   std::vector<double> times;  // seconds
-  // Per key, width() numbers (x y z, or a quaternion x y z w); a cubic spline's key holds
-  // three such groups: in-tangent, value, out-tangent.
+  // Per key, `width` numbers (x y z; a quaternion x y z w; a weight per morph target); a
+  // cubic spline's key holds three such groups: in-tangent, value, out-tangent.
   std::vector<double> values;
-
-  int width() const { return property == NodeProperty::rotation ? 4 : 3; }
+  int width = 3;
 };
 
+// The numbers a key of `property` holds: 3, 4 for a rotation, and for morph weights the
+// number of targets, `targets`.
+inline int key_width(NodeProperty property, int targets) {
+  return property == NodeProperty::rotation ? 4 : property == NodeProperty::weights ? targets : 3;
+}
+
 // A node's local transform as translation, rotation (unit quaternion x y z w) and scale;
-// its matrix is T * R * S.
+// its matrix is T * R * S. `weights`: its mesh's morph target weights when they are
+// animated (else empty).
 struct NodeTrs {
   std::array<double, 3> translation{0.0, 0.0, 0.0};
   std::array<double, 4> rotation{0.0, 0.0, 0.0, 1.0};
   std::array<double, 3> scale{1.0, 1.0, 1.0};
+  std::vector<double> weights;
 };
 
-// A track's value at `seconds`: width() numbers in `out`; a rotation is normalized.
+// A track's value at `seconds`: `width` numbers in `out`; a rotation is normalized.
 void sample(const Track& track, double seconds, double* out);
 
 // The tracks of one animation, each aimed at a node (by its index in the file).

@@ -958,11 +958,76 @@ def gltf_animations():
           gltf=gltf_animation(turn, linear, values=(0, 0, 0, 32767, 0, 32767, 0, 0),
                               values_type="VEC4", values_component=5122).replace(
                                   '"normalized": true', '"normalized": false'))
-    ok("gltf_anim_weights_still", "gltf", "warning: animated weights stay still\nfaces: 1\n",
-       gltf=gltf_animation([{"sampler": 0, "target": {"node": 0, "path": "weights"}}],
-                           [{"input": 1, "output": 2}], values=(0, 1), values_type="SCALAR"))
+    ok("gltf_anim_pointer_still", "gltf",
+       "warning: animated pointer stay still\nfaces: 1\n",
+       gltf=gltf_animation([{"sampler": 0, "target": {"node": 0, "path": "pointer"}}],
+                           [{"input": 1, "output": 2}]))
     ok("gltf_anim_channel_without_node", "gltf", "quiet: true\nfaces: 1\n",
        gltf=gltf_animation([{"sampler": 0, "target": {"path": "translation"}}], linear))
+
+
+
+def gltf_morph(targets, weights_node=None, weights_mesh=None, extra_positions=(), animation=None,
+               more_nodes=(), accessors_extra=()):
+    """The one-triangle glTF whose primitive has `targets` (each a dict of attribute to
+    accessor; accessor 0 is the triangle's positions, accessor 1 holds `extra_positions`);
+    node 0 has the mesh."""
+    import json
+    positions = (0, 0, 0, 1, 0, 0, 0, 1, 0) + tuple(extra_positions)
+    d, bin_ = gltf_json(positions=positions)
+    d["accessors"][0]["count"] = 3
+    if extra_positions:
+        d["bufferViews"][0]["byteLength"] = 36
+        d["bufferViews"].append({"buffer": 0, "byteOffset": 36, "byteLength": len(extra_positions) * 4})
+        d["accessors"].append({"bufferView": 1, "componentType": 5126,
+                               "count": len(extra_positions) // 3, "type": "VEC3"})
+    d["accessors"] += list(accessors_extra)
+    d["meshes"][0]["primitives"][0]["targets"] = targets
+    if weights_mesh is not None:
+        d["meshes"][0]["weights"] = weights_mesh
+    if weights_node is not None:
+        d["nodes"][0]["weights"] = weights_node
+    d["nodes"] += list(more_nodes)
+    if animation is not None:
+        d["animations"] = [animation]
+    return json.dumps(d, indent=1)
+
+
+def gltf_morphs():
+    """Morph targets and their weights: one clear line each."""
+    two = [{"POSITION": 0}, {"POSITION": 0}]
+    ok("gltf_morph_two_targets", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_morph(two, weights_node=[0.5, 0.25]))
+    error("gltf_morph_node_weights_count", "gltf", "the node has 1 morph target weights, its mesh 2",
+          gltf=gltf_morph(two, weights_node=[1]))
+    error("gltf_morph_mesh_weights_count", "gltf", "has 3 morph target weights, its mesh 2 targets",
+          gltf=gltf_morph(two, weights_mesh=[1, 2, 3]))
+    error("gltf_morph_target_count", "gltf", "target 0 POSITION has 4 elements, POSITION 3",
+          gltf=gltf_morph([{"POSITION": 1}], weights_node=[1],
+                          extra_positions=(0, 0, 1) * 4))
+    error("gltf_morph_target_missing_accessor", "gltf", "accessor 9 does not exist",
+          gltf=gltf_morph([{"POSITION": 9}], weights_node=[1]))
+    error("gltf_morph_displacement_overflows", "gltf", "POSITION 0 is not a finite float",
+          gltf=gltf_morph([{"POSITION": 1}], weights_node=[10],
+                          extra_positions=(3e38, 0, 0) * 3))
+    error("gltf_morph_integer_not_normalized", "gltf", "integer displacements must be normalized",
+          gltf=gltf_morph([{"POSITION": 1}], weights_node=[1],
+                          accessors_extra=[{"bufferView": 0, "componentType": 5122, "count": 3,
+                                            "type": "VEC3"}]))
+    anim = lambda node, output_count: {  # noqa: E731
+        "channels": [{"sampler": 0, "target": {"node": node, "path": "weights"}}],
+        "samplers": [{"input": 1, "output": 2}]}
+    # accessors 1 and 2 of the animations: 2 times, then weights (floats of the positions)
+    times_and_weights = [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR"},
+                         {"bufferView": 0, "componentType": 5126, "count": 3, "type": "SCALAR"}]
+    error("gltf_morph_weights_output_count", "gltf",
+          "output has 3 elements for 2 keys, expected 4 (2 morph target weights per key)",
+          gltf=gltf_morph(two, animation=anim(0, 3), accessors_extra=times_and_weights))
+    error("gltf_morph_weights_of_a_mesh_without_targets", "gltf", "whose mesh has no morph targets",
+          gltf=gltf_morph([], animation=anim(0, 3), accessors_extra=times_and_weights))
+    error("gltf_morph_weights_of_a_node_without_mesh", "gltf", "which has no mesh",
+          gltf=gltf_morph(two, animation=anim(1, 3), more_nodes=[{}],
+                          accessors_extra=times_and_weights))
 
 
 
@@ -1007,6 +1072,7 @@ def main():
     gltf()
     gltf_assets()
     gltf_animations()
+    gltf_morphs()
 
 
 if __name__ == "__main__":

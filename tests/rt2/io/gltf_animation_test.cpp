@@ -116,6 +116,86 @@ TEST(GltfAnimation, AStillFileIsTheSameAtEveryTime) {
     for (int k = 0; k < 3; ++k) EXPECT_EQ(a.meshes[0].positions[i][k], b.meshes[0].positions[i][k]);
 }
 
+// A triangle with two morph targets (positions and normals), its mesh's weights, a node's
+// weights and animated weights, against base + sum of weight x target by hand, moved by the
+// node's translation.
+TEST(GltfAnimation, MorphTargetsAddTheirWeightedDisplacementsStaticAndAnimated) {
+  const test::TempDir dir("gltfmorph");
+  test::GltfFile f;
+  const std::vector<float> base = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::vector<float> t0 = {0, 0, 1, 0, 0, 2, 0, 0, 3}, t1 = {1, 1, 0, -1, 0, 0, 0.5f, 0, 0};
+  const std::vector<float> normal = {0, 0, 1, 0, 0, 1, 0, 0, 1}, n0 = {1, 0, 0, 1, 0, 0, 1, 0, 0};
+  f.floats(base, "VEC3", 3);                     // 0
+  f.floats(normal, "VEC3", 3);                   // 1
+  f.floats(t0, "VEC3", 3);                       // 2
+  f.floats(n0, "VEC3", 3);                       // 3
+  f.floats(t1, "VEC3", 3);                       // 4
+  f.floats({0.0f, 1.0f}, "SCALAR", 1);           // 5: times
+  f.floats({0.0f, 0.0f, 1.0f, 0.5f}, "SCALAR", 1);  // 6: weights, 2 a key
+  const std::string mesh =
+      R"(,"meshes":[{"weights":[0.5,0],"primitives":[{"attributes":{"POSITION":0,"NORMAL":1},)"
+      R"("targets":[{"POSITION":2,"NORMAL":3},{"POSITION":4}]}]}],)";
+  const std::string animated = dir.write(
+      "animated.gltf",
+      f.json(mesh + R"("nodes":[{"mesh":0,"translation":[0,0,5]}],"scenes":[{"nodes":[0]}],)"
+                    R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"weights"}}],)"
+                    R"("samplers":[{"input":5,"output":6}]}])"));
+  const std::string node_weights = dir.write(
+      "node.gltf",
+      f.json(mesh + R"("nodes":[{"mesh":0,"weights":[0.25,1]}],"scenes":[{"nodes":[0]}])"));
+  const std::string mesh_weights = dir.write(
+      "mesh.gltf", f.json(mesh + R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  const auto check = [&](const std::string& file, double t, long double w0, long double w1,
+                         long double dz) {
+    const Scene s = load_scene(file, {}, {"", t});
+    ASSERT_EQ(s.meshes.size(), 1u);
+    const Mesh& m = s.meshes[0];
+    for (std::size_t i = 0; i < 3; ++i) {
+      Point want;
+      for (std::size_t k = 0; k < 3; ++k)
+        want[k] = base[3 * i + k] + w0 * t0[3 * i + k] + w1 * t1[3 * i + k] + (k == 2 ? dz : 0);
+      expect_near(m.positions[i], want, file + " vertex " + std::to_string(i));
+      const long double nx = w0, nz = 1, len = std::sqrt(nx * nx + nz * nz);
+      expect_near(m.normals[i], {nx / len, 0, nz / len}, file + " normal");
+    }
+  };
+  check(mesh_weights, 0.0, 0.5L, 0.0L, 0);
+  check(node_weights, 0.0, 0.25L, 1.0L, 0);
+  check(animated, 0.0, 0.0L, 0.0L, 5);
+  check(animated, 0.5, 0.5L, 0.25L, 5);
+  check(animated, 3.0, 1.0L, 0.5L, 5);
+}
+
+// A file without camera or lights is framed from its own node transforms, whatever time it
+// is posed at: the view and the framing light stay put while the model moves; its warnings
+// are printed once.
+TEST(GltfAnimation, AFramedAnimatedFileKeepsItsCameraAndLightAtEveryTime) {
+  const test::TempDir dir("gltfanim");
+  test::GltfFile f;
+  f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
+  f.floats({0.0f, 2.0f}, "SCALAR", 1);
+  f.floats({0, 0, 0, 4, 0, 0}, "VEC3", 3);
+  const std::string file = dir.write(
+      "framed.gltf",
+      f.json(R"(,"extensionsUsed":["KHR_materials_clearcoat"],)"
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+             R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
+             R"("samplers":[{"input":1,"output":2}]}])"));
+  testing::internal::CaptureStderr();
+  const Scene a = load_scene(file, {}, {"", 0.0});
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("ignores extension KHR_materials_clearcoat"), std::string::npos) << err;
+  EXPECT_EQ(err.find("warning:"), err.rfind("warning:")) << err;  // once
+  const Scene b = load_scene(file, {}, {"", 1.5});
+  EXPECT_NE(a.meshes[0].positions[0][0], b.meshes[0].positions[0][0]);  // it moved: x 0, 3
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.camera.position()[k], b.camera.position()[k]);
+    EXPECT_EQ(a.lights[0].position[k], b.lights[0].position[k]);
+    EXPECT_EQ(a.framed_bounds->lo[k], b.framed_bounds->lo[k]);
+  }
+  EXPECT_EQ(a.lights[0].intensity, b.lights[0].intensity);
+}
+
 TEST(GltfAnimation, KeyframeNumbersAreBoundedWhenManyAnimationsShareOneLongSampler) {
   // 300 animations, each naming the same accessors of 60,000 keys (240 KB of data): read
   // once each they would be 300 x 240,000 numbers, more than io::kMaxGltfKeyValues.

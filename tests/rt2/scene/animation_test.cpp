@@ -60,6 +60,7 @@ Track make_track(NodeProperty property, Interpolation interpolation, std::vector
   t.interpolation = interpolation;
   t.times = std::move(times);
   t.values = std::move(values);
+  t.width = key_width(property, 2);
   return t;
 }
 
@@ -174,6 +175,24 @@ TEST(Animation, BeforeTheFirstKeyAndAfterTheLastTheTrackHolds) {
     sample(t, 1e30, out);
     EXPECT_EQ(out[1], 11.0);
   }
+}
+
+TEST(Animation, WeightsInterpolateEachMorphTargetAndCubicSplinesKeepTheirWidth) {
+  Track linear = make_track(NodeProperty::weights, Interpolation::linear, {0.0, 2.0},
+                            {0.0, 1.0, 1.0, 0.0});
+  double out[2];
+  sample(linear, 0.5, out);
+  EXPECT_EQ(out[0], 0.25);
+  EXPECT_EQ(out[1], 0.75);
+  // in-tangents, values, out-tangents of 2 weights per key; zero tangents: smoothstep
+  Track cubic = make_track(NodeProperty::weights, Interpolation::cubic_spline, {0.0, 1.0},
+                           {0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0});
+  sample(cubic, 0.5, out);
+  EXPECT_NEAR(out[0], 0.5, 1e-15);
+  EXPECT_NEAR(out[1], 0.5, 1e-15);
+  sample(cubic, 0.25, out);
+  EXPECT_NEAR(out[0], 3 * 0.0625 - 2 * 0.015625, 1e-15);  // 3u^2 - 2u^3
+  EXPECT_NEAR(out[1], 1 - out[0], 1e-15);
 }
 
 TEST(Animation, PoseMovesOnlyWhatItsChannelsTargetAndDurationIsTheLastKey) {
