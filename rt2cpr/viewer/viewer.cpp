@@ -65,6 +65,7 @@ class Viewer {
         screenshot_key_(screenshot_key),
         start_camera_(scene.camera),
         animated_(scene.animation >= 0),
+        duration_(animated_ ? scene.animations[std::size_t(scene.animation)].duration : 0.0),
         playing_(animated_),
         seconds_(o.pose.seconds),
         fly_(start_camera_, speed_for(scene)),
@@ -98,8 +99,9 @@ class Viewer {
       pump_events(busy() ? 4 : 50);
       const double t = now();
       move_camera(t - last);
-      if (playing_) {  // an animated scene plays in real time
+      if (playing_) {  // an animated scene plays in real time, over and over
         seconds_ += t - last;
+        if (duration_ > 0.0 && seconds_ > duration_) seconds_ = std::fmod(seconds_, duration_);
         changed();
       }
       last = t;
@@ -382,6 +384,7 @@ class Viewer {
   SDL_Keycode screenshot_key_;
   rt2::Camera start_camera_;
   bool animated_;   // the scene has an animation, which plays (space: pause, ',' '.': step)
+  double duration_;  // its length: playing, it starts again from 0 after it
   bool playing_;
   double seconds_;  // the animation's time, from --time
   FlyCamera fly_;
