@@ -651,8 +651,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
 
   if (!(std::abs(o.pose.seconds) <= 1e9))
     throw rt2::Error("time must be in [-1e9, 1e9] seconds, got " + std::to_string(o.pose.seconds));
-  if (!(o.fps > 0.0 && o.fps <= 1e6))
-    throw rt2::Error("fps must be in (0, 1000000], got " + std::to_string(o.fps));
+  if (!(o.fps >= 1e-3 && o.fps <= 1e6))
+    throw rt2::Error("fps must be in [0.001, 1000000], got " + std::to_string(o.fps));
   if (given("--animation") && o.pose.animation.empty())
     throw rt2::Error("--animation needs a name or an index");
   if (!(o.time_budget >= 0.0 && o.time_budget <= 1e9))

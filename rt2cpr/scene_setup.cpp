@@ -101,6 +101,7 @@ std::optional<RenderSetup::PoseTimes> RenderSetup::pose(const Options& o, int fr
   Options at = o;
   at.pose.seconds = frame_seconds(o, frame);
   PoseTimes t;
+  const rt2::io::WarningsOff quiet;  // the first load warned
   scene = timed(t.load_ms, [&] {
     rt2::Scene s = load_scene(at);
     set_lights(s, o.lights, o.light_range);

@@ -232,8 +232,11 @@ vec4 to_vec4(const Vec3d& v) { return vec4(float(v.x), float(v.y), float(v.z)); 
 // ---- the loader ---------------------------------------------------------------------------
 
 // "#3" or "#3 'name'", for messages.
+// An element for messages: its index and its name, cut at 100 bytes (a name of a gigabyte
+// would otherwise be copied into every message built while reading).
 std::string named(int index, const std::string& name) {
-  return "#" + std::to_string(index) + (name.empty() ? "" : " '" + one_line(name) + "'");
+  const std::string shown = name.size() > 100 ? name.substr(0, 100) + "..." : name;
+  return "#" + std::to_string(index) + (name.empty() ? "" : " '" + one_line(shown) + "'");
 }
 
 // A checked accessor: element i starts at data + i * stride, holds `components` values of
@@ -405,8 +408,8 @@ class GltfReader {
 
   Track track(const tinygltf::AnimationSampler& sampler, NodeProperty property, int targets,
               const std::string& at);
-  int morph_targets(int mesh_index, const std::string& at) const;
-  std::vector<double> morph_weights(int node, const std::string& at) const;
+  int morph_targets(int mesh_index, const std::string& at);
+  std::vector<double> morph_weights(int node, const std::string& at);
   Animation animation(int index);
   void pose_nodes();
   void walk(int root, const Mat4& parent);
@@ -433,6 +436,7 @@ class GltfReader {
   std::vector<NodeTrs> posed_;  // per node, its transform as posed; empty: no animation
   std::size_t key_values_ = 0;  // keyframe numbers read, against kMaxGltfKeyValues
   std::size_t morph_reads_ = 0;  // vertices of targets read, against kMaxGltfMorphReads
+  std::vector<int> morph_counts_;  // per mesh, its morph target count once known (else -1)
   std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0, triangles_ = 0;
   std::uint64_t memory_ = available_memory();  // what the triangles may take
   bool have_camera_ = false;
@@ -810,7 +814,7 @@ Animation GltfReader::animation(int index) {
   Animation result;
   result.name = a.name.empty() ? "#" + std::to_string(index) : one_line(a.name);
   const std::string at = "animation " + named(index, a.name);
-  std::vector<std::pair<int, NodeProperty>> targets;
+  std::vector<std::uint8_t> targeted(model_.nodes.size() * 4, 0);  // per node and property
   for (std::size_t c = 0; c < a.channels.size(); ++c) {
     const tinygltf::AnimationChannel& ch = a.channels[c];
     const std::string c_at = at + " channel " + std::to_string(c);
@@ -850,11 +854,11 @@ Animation GltfReader::animation(int index) {
     if (!node.matrix.empty())
       fail(c_at + ": node " + named(ch.target_node, node.name) +
            " has a matrix, and glTF allows only nodes without one to be animated");
-    if (std::find(targets.begin(), targets.end(), std::pair(ch.target_node, property)) !=
-        targets.end())
+    std::uint8_t& seen = targeted[std::size_t(ch.target_node) * 4 + std::size_t(property)];
+    if (seen)
       fail(c_at + ": node " + std::to_string(ch.target_node) + " " + ch.target_path +
            " is the target of an earlier channel; glTF allows one per animation");
-    targets.emplace_back(ch.target_node, property);
+    seen = 1;
     result.channels.push_back(
         {ch.target_node, track(a.samplers[std::size_t(ch.sampler)], property, morph,
                                c_at + " (sampler " + std::to_string(ch.sampler) + ")")});
@@ -900,8 +904,12 @@ void GltfReader::pose_nodes() {
   scene_.seconds = pose_.seconds;
 }
 
-// The morph target count of mesh `mesh_index` (every primitive must have the same).
-int GltfReader::morph_targets(int mesh_index, const std::string& at) const {
+// The morph target count of mesh `mesh_index` (every primitive must have the same),
+// counted once per mesh.
+int GltfReader::morph_targets(int mesh_index, const std::string& at) {
+  if (morph_counts_.empty()) morph_counts_.assign(model_.meshes.size(), -1);
+  int& known = morph_counts_[std::size_t(mesh_index)];
+  if (known >= 0) return known;
   const tinygltf::Mesh& m = model_.meshes[std::size_t(mesh_index)];
   const std::size_t n = m.primitives.empty() ? 0 : m.primitives[0].targets.size();
   for (const tinygltf::Primitive& p : m.primitives)
@@ -911,12 +919,13 @@ int GltfReader::morph_targets(int mesh_index, const std::string& at) const {
   if (n > kMaxGltfMorphTargets)
     fail(at + ": mesh " + named(mesh_index, m.name) + " has " + std::to_string(n) +
          " morph targets, more than " + std::to_string(kMaxGltfMorphTargets));
-  return int(n);
+  known = int(n);
+  return known;
 }
 
 // The morph target weights of node `node`'s mesh as posed: animated, else the node's, else
 // the mesh's, else zeros; one per target.
-std::vector<double> GltfReader::morph_weights(int node, const std::string& at) const {
+std::vector<double> GltfReader::morph_weights(int node, const std::string& at) {
   const tinygltf::Node& n = model_.nodes[std::size_t(node)];
   const tinygltf::Mesh& m = model_.meshes[std::size_t(n.mesh)];
   const std::size_t targets = std::size_t(morph_targets(n.mesh, at));
@@ -1269,14 +1278,10 @@ void GltfReader::finish_lights(const Framing& frame) {
 // animation: what a pose frames must not move from one time to the next.
 Framing GltfReader::still_framing() {
   if (scene_.animation < 0) return framing_of(path_, scene_.bounds(), "scene");
-  Aabb bounds = scene_.bounds();
-  try {
-    const WarningsOff quiet;  // this reading's warnings were the first one's
-    bounds = GltfReader(path_, scene_.assets, pose_, false).read().bounds();
-  } catch (const Error&) {
-    // unposed, the file has nothing to frame (every triangle degenerate ...): this pose's
-  }
-  return framing_of(path_, bounds, "scene");
+  const WarningsOff quiet;  // this reading's warnings were the first one's
+  const Aabb still = GltfReader(path_, scene_.assets, pose_, false).read().bounds();
+  // unposed, the file may have nothing to frame (every triangle degenerate ...): this pose's
+  return framing_of(path_, still.is_empty() ? scene_.bounds() : still, "scene");
 }
 
 Scene GltfReader::read() {
@@ -1300,6 +1305,7 @@ Scene GltfReader::read() {
   }
   pose_nodes();
   for (const int r : roots) walk(r, kIdentity);
+  if (!animate_ && scene_.meshes.empty()) return std::move(scene_);  // still_framing's reading
   if (scene_.meshes.empty())
     fail(scene_.degenerate_triangles
              ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"

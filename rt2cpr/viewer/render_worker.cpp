@@ -8,6 +8,7 @@
 
 #include "rt2/image/display_pixels.h"
 #include "rt2/base/error.h"
+#include "rt2/io/text.h"
 #include "rt2cpr/scene_setup.h"
 
 namespace rt2cpr::viewer {
@@ -65,29 +66,39 @@ std::optional<RenderWorker::Failure> RenderWorker::take_error() {
 // time; a change of time alone places the posed scene in the compiled one).
 void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
   const bool time_changed = base_.animation >= 0 && r.seconds != posed_seconds_;
+  std::optional<rt2::Scene> posed;  // the scene at the request's time, once it is placed
   if (time_changed) {
     Options at = options_;
     at.pose.seconds = r.seconds;
-    base_ = load_scene(at);
-    posed_seconds_ = r.seconds;
+    const rt2::io::WarningsOff quiet;  // the first load warned
+    posed = load_scene(at);
   }
   const bool lights_changed = r.lights != compiled_lights_;
   if (compiled_ && !lights_changed && !time_changed &&
       (!at_camera || same_point(centre_, r.camera.position())))
     return;
-  rt2::Scene scene = base_;
+  rt2::Scene scene = posed ? *posed : base_;
   set_lights(scene, r.lights, options_.light_range);
   scene.camera = r.camera;
   if (!at_camera && compiled_) {  // keep the current origin: only the lights changed
     scene.camera.translate(centre_ - r.camera.position());
   }
   const rt2::vec4 centre = scene.camera.position();
-  if (compiled_ && !at_camera && !lights_changed) {
-    scene.validate();
-    rt2::recenter_on_camera(scene);
-    compiled_->place(scene, options_.bvh, options_.isa);
-  } else {
-    compiled_ = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));
+  try {
+    if (compiled_ && !at_camera && !lights_changed) {
+      scene.validate();
+      rt2::recenter_on_camera(scene);
+      compiled_->place(scene, options_.bvh, options_.isa);
+    } else {
+      compiled_ = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));
+    }
+  } catch (...) {
+    compiled_.reset();  // perhaps half placed: the next request compiles afresh
+    throw;
+  }
+  if (posed) {
+    base_ = std::move(*posed);
+    posed_seconds_ = r.seconds;
   }
   centre_ = centre;
   compiled_lights_ = r.lights;

@@ -66,7 +66,7 @@ class Viewer {
         start_camera_(scene.camera),
         animated_(scene.animation >= 0),
         duration_(animated_ ? scene.animations[std::size_t(scene.animation)].duration : 0.0),
-        playing_(animated_),
+        playing_(duration_ > 0.0),
         seconds_(o.pose.seconds),
         fly_(start_camera_, speed_for(scene)),
         scaler_(o.interactive.target_fps) {
@@ -184,7 +184,7 @@ class Viewer {
             std::fflush(stdout);
             break;
           case SDLK_SPACE:  // play or pause an animated scene
-            if (!animated_) break;
+            if (!(duration_ > 0.0)) break;
             playing_ = !playing_;
             changed();
             break;
@@ -384,7 +384,7 @@ class Viewer {
   SDL_Keycode screenshot_key_;
   rt2::Camera start_camera_;
   bool animated_;   // the scene has an animation, which plays (space: pause, ',' '.': step)
-  double duration_;  // its length: playing, it starts again from 0 after it
+  double duration_;  // its length: playing, it starts again from 0 after it; 0: still
   bool playing_;
   double seconds_;  // the animation's time, from --time
   FlyCamera fly_;

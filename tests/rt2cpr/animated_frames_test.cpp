@@ -94,7 +94,7 @@ TEST_F(AnimatedFrames, NumbersLongerThanTheHashesAreWrittenWholeAndFoldersKeepTh
 }
 
 TEST_F(AnimatedFrames, AnimationOptionsAreCheckedWithOneLine) {
-  expect_clean_failure(run(scene() + " " + kSmall + " --fps 0"), "fps must be in (0, 1000000]");
+  expect_clean_failure(run(scene() + " " + kSmall + " --fps 0"), "fps must be in [0.001, 1000000]");
   expect_clean_failure(run(scene() + " " + kSmall + " --time nan"), "time");
   expect_clean_failure(run(scene() + " " + kSmall + " --animation walk"),
                        "has no animation 'walk' (its 2: #0 'spin', #1 'hop')");

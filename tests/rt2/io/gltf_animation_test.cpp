@@ -164,6 +164,13 @@ TEST(GltfAnimation, MorphTargetsAddTheirWeightedDisplacementsStaticAndAnimated) 
   check(animated, 0.0, 0.0L, 0.0L, 5);
   check(animated, 0.5, 0.5L, 0.25L, 5);
   check(animated, 3.0, 1.0L, 0.5L, 5);
+  // animated weights win over the node's
+  const std::string both = dir.write(
+      "both.gltf",
+      f.json(mesh + R"("nodes":[{"mesh":0,"weights":[0.25,1]}],"scenes":[{"nodes":[0]}],)"
+                    R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"weights"}}],)"
+                    R"("samplers":[{"input":5,"output":6}]}])"));
+  check(both, 0.5, 0.5L, 0.25L, 0);
 }
 
 // A file without camera or lights is framed from its own node transforms, whatever time it
