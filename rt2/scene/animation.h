@@ -1,5 +1,5 @@
-// rt2/scene/animation.h — keyframed node animation: translation, rotation and scale tracks
-// sampled at a time, as glTF 2.0 defines them (§3.11 and Appendix C: STEP, LINEAR with
+// rt2/scene/animation.h — keyframed node animation: translation, rotation, scale and morph
+// weight tracks sampled at a time, as glTF 2.0 defines them (§3.11 and Appendix C: STEP, LINEAR with
 // spherical interpolation of rotations, CUBICSPLINE Hermite splines).
 //
 // Invariant: a Track's times are finite and strictly increasing, its values finite, and a
@@ -34,8 +34,8 @@ inline int key_width(NodeProperty property, int targets) {
   return property == NodeProperty::rotation ? 4 : property == NodeProperty::weights ? targets : 3;
 }
 
-// A node's local transform as translation, rotation (unit quaternion x y z w) and scale;
-// its matrix is T * R * S. `weights`: its mesh's morph target weights when they are
+// A node's local transform as translation, rotation (a quaternion x y z w, normalized by
+// matrix_of) and scale; its matrix is T * R * S. `weights`: its mesh's morph target weights when they are
 // animated (else empty).
 struct NodeTrs {
   std::array<double, 3> translation{0.0, 0.0, 0.0};
