@@ -98,8 +98,7 @@ void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
 }  // namespace
 
 Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
-  std::uint64_t triangles = 0;
-  for (const Mesh& m : scene.meshes) triangles += m.faces.size();
+  const std::uint64_t triangles = scene.triangle_count();
   const std::uint64_t need = triangles * kBytesPerTriangle, have = available_memory();
   if (need > have)
     throw Error("the scene's " + std::to_string(triangles) + " triangles need about " +
