@@ -11,6 +11,8 @@ namespace rt2 {
 // Memory a triangle takes from loading to tracing, at most (its mesh, its shading data, the
 // binary build and the wide tree): what loaders and Accel::build weigh a scene against.
 inline constexpr std::uint64_t kBytesPerTriangle = 512;
+// The same for an instance (its description, its record, its box and the top tree's build).
+inline constexpr std::uint64_t kBytesPerInstance = 768;
 
 // Bytes; UINT64_MAX when neither is known.
 std::uint64_t available_memory();

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <string>
+
+#include <omp.h>
 
 #include "rt2/base/error.h"
 #include "rt2/base/memory.h"
@@ -13,18 +16,34 @@ namespace rt2 {
 
 namespace {
 
-// The triangle tree: build, then lay the triangles out in leaf order and collapse.
-void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
-  // Triangle i of the scene is face i - first[j] of mesh j, the last mesh with first[j] <= i:
-  // found by a search over the meshes, not read from a table of every triangle's mesh and
-  // face (16 bytes a triangle of fresh memory, 23 MB for 1.4M triangles).
+template <int N>
+std::vector<WideBvh<N>>& mesh_trees_of(MeshTrees& t) {
+  if constexpr (N == 16)
+    return t.bvh16;
+  else if constexpr (N == 8)
+    return t.bvh8;
+  else
+    return t.bvh4;
+}
+
+// Which per-vertex columns the triangles carry: normals and texture coordinates, for all
+// triangles when any mesh (the world's or an instanced one) has them.
+struct TriangleColumns {
+  bool normals = false, texcoords = false;
+};
+
+// A tree over `meshes`' triangles: built, the triangles appended to acc's arrays in its leaf
+// order, then collapsed to width N over acc.blocks (prims indexing acc.tris).
+template <int N>
+WideBvh<N> build_triangles(std::span<const Mesh> meshes, const BvhConfig& config,
+                           TriangleColumns columns, Accel& acc, BvhStats* stats) {
+  // Triangle i is face i - first[j] of mesh j, the last mesh with first[j] <= i: found by a
+  // search over the meshes, not read from a table of every triangle's mesh and face (16
+  // bytes a triangle of fresh memory, 23 MB for 1.4M triangles).
   std::vector<std::uint32_t> first;
-  first.reserve(scene.meshes.size());
+  first.reserve(meshes.size());
   std::uint32_t total = 0;
-  bool any_normals = false, any_texcoords = false;
-  for (const Mesh& m : scene.meshes) {
-    any_normals |= !m.normals.empty() && !m.faces.empty();
-    any_texcoords |= !m.texcoords.empty() && !m.faces.empty();
+  for (const Mesh& m : meshes) {
     first.push_back(total);
     total += static_cast<std::uint32_t>(m.faces.size());
   }
@@ -37,32 +56,33 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
       total,
       [&](std::uint32_t i) {
         const std::size_t j = mesh_of(i);
-        const Mesh& m = scene.meshes[j];
+        const Mesh& m = meshes[j];
         Aabb b;
         for (std::uint32_t v : m.faces[i - first[j]]) b.grow(m.positions[v]);
         return b;
       },
       config);
-  acc.stats = bvh.stats;
-  acc.tris.reserve(bvh.order.size());
-  acc.tri_materials.reserve(bvh.order.size());
-  if (any_normals) acc.tri_normals.reserve(bvh.order.size());
-  if (any_texcoords) acc.tri_texcoords.reserve(bvh.order.size());
+  if (stats) *stats = bvh.stats;
+  const std::size_t offset = acc.tris.size();
+  acc.tris.reserve(offset + bvh.order.size());
+  acc.tri_materials.reserve(offset + bvh.order.size());
+  if (columns.normals) acc.tri_normals.reserve(offset + bvh.order.size());
+  if (columns.texcoords) acc.tri_texcoords.reserve(offset + bvh.order.size());
   for (std::uint32_t k : bvh.order) {
     const std::size_t j = mesh_of(k);
-    const Mesh& m = scene.meshes[j];
+    const Mesh& m = meshes[j];
     const std::uint32_t face = k - first[j];
     const auto& f = m.faces[face];
     const Triangle tri = Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
     acc.tris.push_back(tri);
     acc.tri_materials.push_back(m.face_materials[face]);
-    if (any_texcoords) {
+    if (columns.texcoords) {
       if (m.texcoords.empty())
         acc.tri_texcoords.push_back({});
       else
         acc.tri_texcoords.push_back({m.texcoords[f[0]], m.texcoords[f[1]], m.texcoords[f[2]]});
     }
-    if (!any_normals) continue;
+    if (!columns.normals) continue;
     if (m.normals.empty()) {
       const vec4 nf = normalize(tri.n);
       acc.tri_normals.push_back({nf, nf, nf});
@@ -70,11 +90,15 @@ void build_triangles(const Scene& scene, const BvhConfig& config, Accel& acc) {
       acc.tri_normals.push_back({m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]});
     }
   }
-  with_bvh_width(acc.isa, [&](auto width) {
-    constexpr int N = decltype(width)::value;
-    acc.wide<N>() = collapse_bvh<N>(bvh, acc.tris, acc.blocks);
-    acc.wide_nodes = static_cast<std::uint32_t>(acc.wide<N>().nodes.size());
-  });
+  const std::size_t first_block = acc.blocks.size();
+  WideBvh<N> tree = collapse_bvh<N>(bvh, std::span<const Triangle>(acc.tris).subspan(offset),
+                                    acc.blocks);
+  if (offset != 0)  // the blocks name triangles of the span: shift them to acc.tris'
+    for (std::size_t b = first_block; b < acc.blocks.size(); ++b)
+      for (std::uint32_t& p : acc.blocks[b].prim)
+        if ((p & ~TriangleBlock::kLastBlock) != TriangleBlock::kNoPrim)
+          p += static_cast<std::uint32_t>(offset);
+  return tree;
 }
 
 void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
@@ -98,26 +122,91 @@ void build_spheres(const Scene& scene, const BvhConfig& config, Accel& acc) {
 }  // namespace
 
 Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
-  const std::uint64_t triangles = scene.triangle_count();
-  const std::uint64_t need = triangles * kBytesPerTriangle, have = available_memory();
+  const std::uint64_t triangles = scene.triangle_count(), instances = scene.instances.size();
+  const std::uint64_t need = triangles * kBytesPerTriangle + instances * kBytesPerInstance,
+                      have = available_memory();
   if (need > have)
-    throw Error("the scene's " + std::to_string(triangles) + " triangles need about " +
-                memory_size(need) + " to build and trace; " + memory_size(have) +
-                " of memory is available");
+    throw Error("the scene's " + std::to_string(triangles) + " triangles" +
+                (instances ? " and " + std::to_string(instances) + " instances" : "") +
+                " need about " + memory_size(need) + " to build and trace; " +
+                memory_size(have) + " of memory is available");
   Accel acc;
   acc.isa = isa;
-  build_triangles(scene, config, acc);
+  TriangleColumns columns;
+  for (const auto* meshes : {&scene.meshes, &scene.instanced_meshes})
+    for (const Mesh& m : *meshes) {
+      columns.normals |= !m.normals.empty() && !m.faces.empty();
+      columns.texcoords |= !m.texcoords.empty() && !m.faces.empty();
+    }
+  with_bvh_width(isa, [&](auto width) {
+    constexpr int N = decltype(width)::value;
+    acc.wide<N>() = build_triangles<N>(scene.meshes, config, columns, acc, &acc.stats);
+    acc.wide_nodes = static_cast<std::uint32_t>(acc.wide<N>().nodes.size());
+    std::vector<WideBvh<N>>& trees = mesh_trees_of<N>(acc.mesh_trees);
+    for (const Mesh& m : scene.instanced_meshes) {
+      trees.push_back(build_triangles<N>(std::span<const Mesh>(&m, 1), config, columns, acc,
+                                         nullptr));
+      acc.wide_nodes += static_cast<std::uint32_t>(trees.back().nodes.size());
+    }
+  });
   build_spheres(scene, config, acc);
   acc.planes = scene.planes;
   acc.plane_materials = scene.plane_materials;
+  acc.place_instances(scene.instances);
   return acc;
 }
 
+void Accel::place_instances(const std::vector<Instance>& scene_instances, int threads) {
+  const std::size_t n = scene_instances.size();
+  std::vector<Aabb> boxes(n);
+  std::vector<TracedInstance> records(n);
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  with_bvh_width(isa, [&](auto width) {
+    constexpr int N = decltype(width)::value;
+#pragma omp parallel for num_threads(team) schedule(static) if (n >= 4096)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Instance& in = scene_instances[i];
+      TracedInstance& r = records[i];
+      const Affine to_object = in.to_world.inverse();
+      r.to_world = columns_of(in.to_world);
+      r.to_object = columns_of(to_object);
+      Affine normals;  // A^-T: the transpose of the inverse's linear part
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) normals.m[std::size_t(a)][std::size_t(b)] =
+            to_object.m[std::size_t(b)][std::size_t(a)];
+      normals.m[0][3] = normals.m[1][3] = normals.m[2][3] = 0.0;
+      r.normals = columns_of(normals);
+      r.mesh = in.mesh;
+      r.material = in.material;
+      r.source = static_cast<std::uint32_t>(i);
+      r.identity = in.to_world.is_identity();
+      r.mirror = in.to_world.determinant() < 0.0;
+      boxes[i] = world_box(mesh_tree<N>(in.mesh).bounds, in.to_world);
+    }
+  });
+  // One instance a leaf: entering one costs a transform and a walk of its own.
+  BvhConfig top;
+  top.max_leaf_size = 1;
+  top.sah_block = 1;
+  instance_bvh = n ? build_bvh(boxes, top) : Bvh{};
+  instance_bvh.nodes.shrink_to_fit();
+  instances.resize(n);
+  for (std::size_t k = 0; k < instance_bvh.order.size(); ++k)
+    instances[k] = records[instance_bvh.order[k]];
+}
+
 std::size_t Accel::bvh_bytes() const {
+  std::size_t mesh_nodes = 0;
+  for (const auto& t : mesh_trees.bvh4) mesh_nodes += t.nodes.size() * sizeof(WideNode<4>);
+  for (const auto& t : mesh_trees.bvh8) mesh_nodes += t.nodes.size() * sizeof(WideNode<8>);
+  for (const auto& t : mesh_trees.bvh16) mesh_nodes += t.nodes.size() * sizeof(WideNode<16>);
   return bvh4.nodes.size() * sizeof(WideNode<4>) + bvh8.nodes.size() * sizeof(WideNode<8>) +
          bvh16.nodes.size() * sizeof(WideNode<16>) + blocks.size() * sizeof(TriangleBlock) +
-         sphere_bvh.nodes.size() * sizeof(BvhNode) +
-         sphere_bvh.order.size() * sizeof(std::uint32_t);
+         mesh_nodes + sphere_bvh.nodes.size() * sizeof(BvhNode) +
+         sphere_bvh.order.size() * sizeof(std::uint32_t) +
+         instance_bvh.nodes.size() * sizeof(BvhNode) +
+         instance_bvh.order.size() * sizeof(std::uint32_t) +
+         instances.size() * sizeof(TracedInstance);
 }
 
 WideSah Accel::tree_sah() const {

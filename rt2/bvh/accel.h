@@ -8,6 +8,11 @@
 // keeps each triangle whole for shading. Spheres (usually few) keep the binary tree. The
 // queries (closest hit, transmittance) are compiled per instruction set in the render
 // kernel (rt2/kernel/).
+//
+// Two levels: an instanced mesh (scene/instance.h) has a wide tree of its own over its
+// triangles in its own coordinates (they share `blocks` and `tris`); a binary tree over the
+// instances' world boxes sits beside the world's trees. A ray enters an instance through its
+// inverse transform, unnormalised, so that t stays a distance in the world.
 #pragma once
 
 #include <array>
@@ -21,11 +26,31 @@
 #include "rt2/geometry/triangle.h"
 #include "rt2/geometry/triangle_block.h"
 #include "rt2/base/isa.h"
+#include "rt2/scene/instance.h"
 #include "rt2/scene/material.h"
 
 namespace rt2 {
 
 struct Scene;
+
+// An instance as the traversal reads it (scene/instance.h).
+struct TracedInstance {
+  AffineColumns to_object;  // world -> the mesh's coordinates (rays)
+  AffineColumns to_world;   // the mesh's coordinates -> world (hit points, triangles)
+  AffineColumns normals;    // shading normals to the world: A^-T (c[3] = 0)
+  std::uint32_t mesh = 0;   // its tree: Accel::mesh_trees
+  std::uint32_t material = kMeshMaterials;  // or every face's material
+  std::uint32_t source = 0;  // its index in Scene::instances
+  bool identity = false;     // rays enter unchanged
+  bool mirror = false;       // determinant < 0: geometric normals turned back (instance.h)
+};
+
+// The trees of one width, per instanced mesh.
+struct MeshTrees {
+  std::vector<WideBvh<4>> bvh4;
+  std::vector<WideBvh<8>> bvh8;
+  std::vector<WideBvh<16>> bvh16;
+};
 
 struct Accel {
   Isa isa = Isa::sse41;  // what the trees were built for: bvh_width(isa) children per node
@@ -50,13 +75,24 @@ struct Accel {
   std::vector<Plane> planes;
   std::vector<std::uint32_t> plane_materials;
 
+  // Instances: per instanced mesh its tree (the ISA's width), and the instances in the leaf
+  // order of a binary tree over their world boxes: leaf [first, first + count) holds
+  // instances[first ...]. A hit inside one names it (Hit::instance).
+  MeshTrees mesh_trees;
+  Bvh instance_bvh;
+  std::vector<TracedInstance> instances;
+
   // Statistics of the triangle tree: the binary build (time, nodes, depth) and the wide
   // tree's node and leaf counts.
   BvhStats stats;
   std::uint32_t wide_nodes = 0;
 
-  // Builds both trees with `config`, the triangle tree `bvh_width(isa)` wide.
+  // Builds every tree with `config`, the triangle trees `bvh_width(isa)` wide.
   static Accel build(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
+
+  // Rebuilds the top level for `instances` (the scene's, moved; the same meshes): their
+  // records and the tree over their boxes, with `threads` OpenMP threads (<= 0: all).
+  void place_instances(const std::vector<Instance>& instances, int threads = 0);
 
   // The triangle tree of width N (4, 8 or 16).
   template <int N>
@@ -72,20 +108,34 @@ struct Accel {
   WideBvh<N>& wide() {
     return const_cast<WideBvh<N>&>(static_cast<const Accel&>(*this).wide<N>());
   }
+  // Instanced mesh m's tree of width N.
+  template <int N>
+  const WideBvh<N>& mesh_tree(std::uint32_t m) const {
+    if constexpr (N == 16)
+      return mesh_trees.bvh16[m];
+    else if constexpr (N == 8)
+      return mesh_trees.bvh8[m];
+    else
+      return mesh_trees.bvh4[m];
+  }
 
-  // Bytes of the acceleration structure: tree nodes and leaf blocks (what a ray walks), not
-  // the shading data (tris, materials, normals).
+  // Bytes of the acceleration structure: tree nodes and leaf blocks (what a ray walks), the
+  // instances and their tree, not the shading data (tris, materials, normals).
   std::size_t bvh_bytes() const;
 
   // The triangle tree's surface area cost in Embree's terms (wide_sah, bvh/wide_bvh.h).
   WideSah tree_sah() const;
 
-  // Branch-free: a batch's hits mix the kinds unpredictably (a plane's tag, or any other,
-  // reads the planes').
-  std::uint32_t material_of(PrimRef p) const {
+  // Branch-free over the kinds: a batch's hits mix them unpredictably (a plane's tag, or any
+  // other, reads the planes'). A hit in an instance takes the instance's material if it has
+  // one.
+  std::uint32_t material_of(PrimRef p, std::uint32_t instance = kNoInstance) const {
     const std::uint32_t* const of_kind[4] = {tri_materials.data(), sphere_materials.data(),
                                              plane_materials.data(), plane_materials.data()};
-    return of_kind[prim_tag(p) >> 30][prim_index(p)];
+    const std::uint32_t own = of_kind[prim_tag(p) >> 30][prim_index(p)];
+    if (instance == kNoInstance) return own;
+    const std::uint32_t m = instances[instance].material;
+    return m == kMeshMaterials ? own : m;
   }
 };
 

@@ -57,10 +57,14 @@ inline constexpr PrimRef kNoHit = ~0u;
 inline constexpr PrimRef prim_tag(PrimRef r) { return r & kTagMask; }
 inline constexpr std::uint32_t prim_index(PrimRef r) { return r & ~kTagMask; }
 
+// Not in an instance (a hit on the world's own geometry).
+inline constexpr std::uint32_t kNoInstance = ~0u;
+
 struct Hit {
   float t = kInfinity;
   float u = 0.0f, v = 0.0f;  // barycentrics of a triangle hit
   PrimRef prim = kNoHit;
+  std::uint32_t instance = kNoInstance;  // Accel::instances, for a triangle in one
   bool found() const { return prim != kNoHit; }
 };
 

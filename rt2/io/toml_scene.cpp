@@ -657,6 +657,18 @@ bool fetched_mesh(const std::string& path) {
   return false;
 }
 
+// Reads `path` as an OBJ mesh for [[meshes]] and [[instances]] (`key`: the key that names
+// it, for messages).
+Mesh read_obj_file(const Reader& r, std::string_view key, const std::string& path, Scene& scene,
+                   int override_material) {
+  std::error_code ec;
+  if (fs::status(path, ec).type() == fs::file_type::not_found && fetched_mesh(path))
+    throw Error(one_line(r.locate(key) + " '" + path +
+                         "': file not found (scripts/fetch-meshes fetches data/meshes/)"));
+  return obj_to_mesh(path, read_text_file(path, kMaxObjBytes, r.locate(key)), scene,
+                     override_material);
+}
+
 void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
   for_each_table(
       root, "meshes", {"file", "material", "scale", "rotate", "translate"}, [&](const Reader& r) {
@@ -668,12 +680,7 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
         xf.rotate_degrees = r.vector("rotate", xf.rotate_degrees, kAny);
         xf.translate = r.vector("translate", xf.translate, kAny);
 
-        std::error_code ec;
-        if (fs::status(path, ec).type() == fs::file_type::not_found && fetched_mesh(path))
-          throw Error(one_line(r.locate("file") + " '" + path +
-                               "': file not found (scripts/fetch-meshes fetches data/meshes/)"));
-        Mesh mesh = obj_to_mesh(path, read_text_file(path, kMaxObjBytes, r.locate("file")), scene,
-                                override_material);
+        Mesh mesh = read_obj_file(r, "file", path, scene, override_material);
         apply_transform(mesh, xf);
         if (!std::all_of(mesh.positions.begin(), mesh.positions.end(),
                          [](const vec4& p) { return finite(p); }))
@@ -687,6 +694,83 @@ void read_meshes(const Reader& root, Scene& scene, const fs::path& folder) {
       });
 }
 
+// An instance's transform: `matrix` (3 or 4 rows of 4 numbers, row-major; a fourth row must
+// be 0 0 0 1), or scale, rotate and translate as [[meshes]] takes them.
+Affine read_placement(const Reader& r) {
+  const toml::node* m = r.find("matrix");
+  if (!m) {
+    Transform xf;
+    xf.scale = read_scale(r);
+    xf.rotate_degrees = r.vector("rotate", xf.rotate_degrees, kAny);
+    xf.translate = r.vector("translate", xf.translate, kAny);
+    return affine_of(xf);
+  }
+  for (const char* other : {"scale", "rotate", "translate"})
+    if (r.find(other))
+      r.fail(*r.find(other), r.path() + ": give matrix or " + other + ", not both");
+  const toml::array* rows = m->as_array();
+  if (!rows || (rows->size() != 3 && rows->size() != 4))
+    r.fail(*m, r.name("matrix") + " must be 3 or 4 rows of 4 numbers");
+  Affine a;
+  for (std::size_t i = 0; i < rows->size(); ++i) {
+    const toml::array* row = (*rows)[i].as_array();
+    const std::string at = r.name("matrix") + "[" + std::to_string(i) + "]";
+    if (!row || row->size() != 4) r.fail((*rows)[i], at + " must be a row of 4 numbers");
+    for (std::size_t j = 0; j < 4; ++j) {
+      const double x = to_number(r.file(), (*row)[j], at + "[" + std::to_string(j) + "]", kAny);
+      if (i < 3)
+        a.m[i][j] = x;
+      else if (x != (j == 3 ? 1.0 : 0.0))
+        r.fail((*row)[j], at + " must be 0 0 0 1 (an affine transform)");
+    }
+  }
+  return a;
+}
+
+// [[instances]]: a mesh file placed by a transform; each file is read once, however many
+// instances name it (with its own MTL materials), and traced through one tree.
+void read_instances(const Reader& root, Scene& scene, const fs::path& folder) {
+  struct Loaded {
+    std::string path;
+    std::uint32_t mesh;
+    AreaRange areas;
+  };
+  std::vector<Loaded> loaded;
+  for_each_table(
+      root, "instances", {"mesh", "material", "scale", "rotate", "translate", "matrix"},
+      [&](const Reader& r) {
+        const std::string path = (folder / r.string("mesh")).string();
+        Instance in;
+        if (r.find("material")) in.material = material_ref(r, scene, "material");
+        in.to_world = read_placement(r);
+        if (!in.to_world.finite())
+          r.fail_table(r.path() + ": the transform is not finite in double precision");
+        const double det = in.to_world.determinant();
+        if (!std::isnormal(det) || !in.to_world.inverse().finite())
+          r.fail_table(r.path() + ": the transform is singular (determinant " +
+                       std::to_string(det) + ")");
+        auto it = std::find_if(loaded.begin(), loaded.end(),
+                               [&](const Loaded& e) { return e.path == path; });
+        if (it == loaded.end()) {
+          Mesh mesh = read_obj_file(r, "mesh", path, scene, -1);
+          scene.degenerate_triangles += mesh.drop_degenerate();
+          if (mesh.faces.empty()) r.fail(r.require("mesh"), "'" + path + "' has no triangles");
+          const AreaRange areas = area_range(mesh);
+          scene.instanced_meshes.push_back(std::move(mesh));
+          loaded.push_back({path, std::uint32_t(scene.instanced_meshes.size() - 1), areas});
+          it = loaded.end() - 1;
+        }
+        in.mesh = it->mesh;
+        const Aabb box = world_box(scene.instanced_meshes[in.mesh].bounds(), in.to_world);
+        if (!finite(box.lo) || !finite(box.hi))
+          r.fail_table(r.path() + ": the transform takes '" + path + "' beyond float range");
+        if (!areas_fit_float(it->areas, in.to_world))
+          r.fail_table(r.path() + ": the transform makes triangles of '" + path +
+                       "' too large or too small for float arithmetic");
+        scene.instances.push_back(in);
+      });
+}
+
 }  // namespace
 
 Scene read_toml_scene(const std::string& path, const AssetPolicy& policy) {
@@ -696,7 +780,7 @@ Scene read_toml_scene(const std::string& path, const AssetPolicy& policy) {
   const toml::table doc = parse_toml(path, text);
   const Reader root(path, doc, "",
                     {"camera", "world", "environment", "materials", "lights", "light_field",
-                     "spheres", "planes", "meshes"});
+                     "spheres", "planes", "meshes", "instances"});
   Scene scene;
   scene.assets = policy;
   read_camera(root, scene);
@@ -709,6 +793,7 @@ Scene read_toml_scene(const std::string& path, const AssetPolicy& policy) {
   read_spheres(root, scene);
   read_planes(root, scene);
   read_meshes(root, scene, folder);
+  read_instances(root, scene, folder);
   validate(path, scene);
   return scene;
 }

@@ -1,7 +1,8 @@
 // rt2/kernel/any_hit.h — the surfaces a segment of a ray crosses, for one ray and for a packet
-// of up to 16: the query calls the caller's cross(prim) for each plane, sphere (twice when
-// the segment passes through it) and triangle on (t_min, t_max), in no particular order,
-// until it returns true. `occluded` is the query with every surface opaque; transmittance.h
+// of up to 16: the query calls the caller's cross(prim, instance) for each plane, sphere
+// (twice when the segment passes through it) and triangle on (t_min, t_max), in no
+// particular order, until it returns true; `instance` is kNoInstance but for a triangle of
+// an instance (cross takes it as a defaulted parameter). `occluded` is the query with every surface opaque; transmittance.h
 // multiplies the surfaces' transparencies. A ray with a NaN coordinate crosses nothing.
 #pragma once
 
@@ -10,6 +11,7 @@
 #include "rt2/kernel/kernel.h"
 
 #include "rt2/bvh/accel.h"
+#include "rt2/kernel/instances.h"
 #include "rt2/kernel/planes_spheres.h"
 #include "rt2/kernel/query_rays.h"
 #include "rt2/kernel/wide_traverse.h"
@@ -28,20 +30,22 @@ MLIB_INLINE bool any_hit(const Accel& acc, const Ray& ray, float t_min, float t_
   return any_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray,
                               TriangleTest<Watertight>(ray), t_min, t_max,
                               [&](std::uint32_t prim, float) { return cross(PrimRef(prim)); },
-                              counts);
+                              counts) ||
+         any_instanced<Watertight>(acc, ray, t_min, t_max, cross, counts);
 }
 
 // Whether anything at all (every surface opaque) lies on `ray` in (t_min, t_max).
 template <bool Watertight>
 MLIB_INLINE bool occluded(const Accel& acc, const Ray& ray, float t_min, float t_max,
                           TraversalCounts* counts = nullptr) {
-  return any_hit<Watertight>(acc, ray, t_min, t_max, [](PrimRef) { return true; }, counts);
+  return any_hit<Watertight>(
+      acc, ray, t_min, t_max, [](PrimRef, std::uint32_t = kNoInstance) { return true; }, counts);
 }
 
 // any_hit for each ray of a packet loaded into pr whose lane is in `finite` (load_finite's
-// answer): cross(l, prim) for lane l's surfaces; returns the lanes for which it returned
-// true. Planes and spheres are tested kRayLanes rays at a time, the triangles walked as one
-// packet when the rays allow it. t_max holds kPacketSize floats (all read; those outside
+// answer): cross(l, prim, instance) for lane l's surfaces; returns the lanes for which it
+// returned true. Planes and spheres are tested kRayLanes rays at a time, the triangles
+// walked as one packet when the rays allow it, the instances ray by ray. t_max holds kPacketSize floats (all read; those outside
 // `finite` are not used).
 template <bool Watertight, class Cross>
 inline PacketMask any_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketMask finite,
@@ -51,7 +55,22 @@ inline PacketMask any_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, Packe
   PacketMask blocked = cross_planes_and_spheres_packet(acc, pr, finite, t_min, t_max, cross);
   const PacketMask open = finite & ~blocked;
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
-  if (!open || bvh.root == kNoChild) return blocked;
+  if (!open) return blocked;
+  const auto instanced = [&] {
+    if (acc.instances.empty()) return;
+    for (PacketMask m = finite & ~blocked; m; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      if (any_instanced<Watertight>(
+              acc, pr.ray(l), t_min, t_max[l],
+              [&](PrimRef prim, std::uint32_t instance) { return cross(l, prim, instance); },
+              counts))
+        blocked |= PacketMask(1) << l;
+    }
+  };
+  if (bvh.root == kNoChild) {
+    instanced();
+    return blocked;
+  }
   const PacketMask walked =
       walk_as_packets(pr, open, [&](const PacketRays<kWidth>& p, PacketMask group) {
         const PacketTestFor<Watertight> pt(p, group);
@@ -68,6 +87,7 @@ inline PacketMask any_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, Packe
                              counts))
       blocked |= PacketMask(1) << l;
   }
+  instanced();
   return blocked;
 }
 
@@ -78,8 +98,9 @@ inline PacketMask occluded_packet(const Accel& acc, const Ray* rays, PacketMask 
                                   float t_min, const float* t_max,
                                   TraversalCounts* counts = nullptr) {
   LoadedPacket p(rays, lanes, t_max);
-  return any_hit_loaded<Watertight>(acc, p.rays, p.finite, t_min, p.bound,
-                                    [](int, PrimRef) { return true; }, counts);
+  return any_hit_loaded<Watertight>(
+      acc, p.rays, p.finite, t_min, p.bound,
+      [](int, PrimRef, std::uint32_t = kNoInstance) { return true; }, counts);
 }
 
 }  // namespace rt2::RT2_ISA

@@ -9,14 +9,15 @@
 #include "rt2/kernel/kernel.h"
 
 #include "rt2/bvh/accel.h"
+#include "rt2/kernel/instances.h"
 #include "rt2/kernel/planes_spheres.h"
 #include "rt2/kernel/query_rays.h"
 #include "rt2/kernel/wide_traverse.h"
 
 namespace rt2::RT2_ISA {
 
-// The closest hit in (t_min, t_max) over planes, spheres and triangles; t = inf and
-// prim = kNoHit when there is none.
+// The closest hit in (t_min, t_max) over planes, spheres, triangles and instances; t = inf
+// and prim = kNoHit when there is none.
 //
 // Always inlined into its caller's loop: out of line, GCC 12 returns the Hit through the
 // stack as 4- and 8-byte stores read back as two 8-byte halves, a load that no store can
@@ -33,6 +34,7 @@ MLIB_INLINE Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float
   closest_plane_or_sphere(acc, ray, t_min, h);
   closest_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                            t_min, h, counts);
+  closest_instanced<Watertight>(acc, ray, t_min, h, counts);
   if (!h.found()) h.t = kInfinity;
   return h;
 }
@@ -41,7 +43,7 @@ MLIB_INLINE Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float
 // t_min, t_max[l]) for the lanes l of `lanes` (bit for bit the same; `finite`: those
 // without a NaN coordinate, load_finite's answer), planes and spheres tested kRayLanes rays
 // at a time, the triangles walked as one packet when the rays allow it
-// (packet_traverse.h). t_max holds kPacketSize floats (all read; those outside `lanes` are
+// (packet_traverse.h), the instances ray by ray. t_max holds kPacketSize floats (all read; those outside `lanes` are
 // not used); only the lanes of `lanes` of hits are written.
 template <bool Watertight>
 inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketMask lanes,
@@ -74,6 +76,11 @@ inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketM
                                  hits[l], counts);
       }
     }
+    if (!acc.instances.empty())
+      for (PacketMask m = finite; m; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        closest_instanced<Watertight>(acc, pr.ray(l), t_min, hits[l], counts);
+      }
   }
   for (PacketMask m = lanes; m; m &= m - 1) {
     const int l = std::countr_zero(m);

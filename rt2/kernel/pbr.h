@@ -44,7 +44,7 @@ struct PbrPoint {
 inline vec4 normal_mapped(const Accel& acc, const SurfacePoint& s, const vec4& texel,
                           float scale) {
   const std::uint32_t i = prim_index(s.prim);
-  const Triangle& tri = acc.tris[i];
+  const Triangle tri = world_triangle(acc, i, s.instance);
   const auto& c = acc.tri_texcoords[i];
   const vec4 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
   const float du1 = c[1][0] - c[0][0], dv1 = c[1][1] - c[0][1];

@@ -117,8 +117,8 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
   // Every lane on one primitive (a floor, a sphere in view: most passes of a frame): its
   // material and data once, broadcast.
   const PrimRef prim0 = hits[0].prim;
-  bool uniform = prim0 != kNoHit;
-  for (int l = 1; l < n; ++l) uniform &= hits[l].prim == prim0;
+  bool uniform = prim0 != kNoHit && hits[0].instance == kNoInstance;
+  for (int l = 1; l < n; ++l) uniform &= hits[l].prim == prim0 && hits[l].instance == kNoInstance;
   if (uniform) {
     const std::uint32_t material = acc.material_of(prim0);
     if (!sc.plain_phong[material]) return 0;
@@ -159,7 +159,8 @@ inline unsigned gather_lanes(const CompiledScene& sc, const Batches& b, std::siz
   for (int l = 0; l < kHitLanes; ++l) {
     // A hit on a plain Phong material (CompiledScene::plain_phong) takes lane l; without
     // branches on the material, whose kinds mix in a batch.
-    const PrimRef prim = l < n ? hits[l].prim : kNoHit;
+    // (a hit in an instance is shaded one by one: surface_at places it in the world)
+    const PrimRef prim = l < n && hits[l].instance == kNoInstance ? hits[l].prim : kNoHit;
     if (prim == kNoHit) continue;
     const std::uint32_t material = acc.material_of(prim);
     const unsigned bit = unsigned(sc.plain_phong[material]) << l;

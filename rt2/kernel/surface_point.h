@@ -3,7 +3,9 @@
 // coordinates there; per kind of primitive.
 //
 // The point is computed from the hit's barycentrics (triangles) or re-projected onto the
-// surface (spheres, planes): precise to a few ulps, see geometry/offset.h.
+// surface (spheres, planes): precise to a few ulps, see geometry/offset.h. A triangle of an
+// instance is first placed in the world (world_triangle), its shading normals turned by the
+// inverse transpose.
 #pragma once
 
 #include <algorithm>
@@ -30,14 +32,39 @@ struct SurfacePoint {
   std::uint32_t material;
   // The hit itself, for what only some materials need (texture coordinates: texcoords_at).
   PrimRef prim;
+  std::uint32_t instance;
   float t, u, v;
 };
+
+// Triangle i as it lies in the world: in instance `instance` (kNoInstance: the world's own)
+// its vertices transformed, and its normal turned back when the instance mirrors.
+inline Triangle world_triangle(const Accel& acc, std::uint32_t i, std::uint32_t instance) {
+  const Triangle& t = acc.tris[i];
+  if (instance == kNoInstance || acc.instances[instance].identity) return t;
+  const TracedInstance& in = acc.instances[instance];
+  Triangle w = Triangle::make(in.to_world.point(t.v0), in.to_world.point(t.v1),
+                              in.to_world.point(t.v2));
+  if (in.mirror) w.n = -w.n;
+  return w;
+}
 
 inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
                                float offset_scale) {
   SurfacePoint s;
   const std::uint32_t i = prim_index(h.prim);
-  if (prim_tag(h.prim) == kTriangleTag) {
+  if (prim_tag(h.prim) == kTriangleTag && h.instance != kNoInstance &&
+      !acc.instances[h.instance].identity) {
+    const Triangle tri = world_triangle(acc, i, h.instance);
+    s.p = tri.point(h.u, h.v);
+    s.ng = normalize(tri.n);
+    if (acc.tri_normals.empty()) {
+      s.ns = s.ng;
+    } else {
+      const auto& n = acc.tri_normals[i];
+      s.ns = normalize(acc.instances[h.instance].normals.direction((1.0f - h.u - h.v) * n[0] +
+                                                                    h.u * n[1] + h.v * n[2]));
+    }
+  } else if (prim_tag(h.prim) == kTriangleTag) {
     const Triangle& tri = acc.tris[i];
     s.p = tri.point(h.u, h.v);  // from barycentrics: precise, see offset.h
     s.ng = normalize(tri.n);
@@ -58,8 +85,9 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
     s.p = q - pl.n * (float(dot(q, pl.n)) + pl.d);  // projected onto the plane
     s.ng = s.ns = pl.n;
   }
-  s.material = acc.material_of(h.prim);
+  s.material = acc.material_of(h.prim, h.instance);
   s.prim = h.prim;
+  s.instance = h.instance;
   s.t = h.t;
   s.u = h.u;
   s.v = h.v;
@@ -97,7 +125,8 @@ inline TexturePoint texcoords_at(const Accel& acc, const SurfacePoint& s, const 
     // sqrt(texture area / world area) of the triangle
     const float uv_area = std::fabs((c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) -
                                     (c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
-    const float world_area = std::sqrt(float(dot(acc.tris[i].n, acc.tris[i].n)));
+    const Triangle tri = world_triangle(acc, i, s.instance);
+    const float world_area = std::sqrt(float(dot(tri.n, tri.n)));
     tp.per_world = world_area > 0.0f ? std::sqrt(uv_area / world_area) : 0.0f;
   } else if (prim_tag(s.prim) == kSphereTag) {
     const Sphere& sp = acc.spheres[i];

@@ -70,8 +70,8 @@ inline float transmittance(const Accel& acc, const std::vector<Material>& materi
                            const Ray& ray, float t_min, float t_max,
                            TraversalCounts* counts = nullptr) {
   Crossings c;
-  const auto cross = [&](PrimRef prim) {
-    return c.cross(materials[acc.material_of(prim)].transparency);
+  const auto cross = [&](PrimRef prim, std::uint32_t instance = kNoInstance) {
+    return c.cross(materials[acc.material_of(prim, instance)].transparency);
   };
   return any_hit<Watertight>(acc, ray, t_min, t_max, cross, counts) ? 0.0f : c.transmittance();
 }
@@ -86,8 +86,8 @@ inline void transmittance_loaded(const Accel& acc, const std::vector<Material>& 
                                  TraversalCounts* counts) {
   Crossings c[kPacketSize];
   for (PacketMask m = lanes & ~finite; m; m &= m - 1) passed[std::countr_zero(m)] = 1.0f;
-  const auto cross = [&](int l, PrimRef prim) {
-    return c[l].cross(materials[acc.material_of(prim)].transparency);
+  const auto cross = [&](int l, PrimRef prim, std::uint32_t instance = kNoInstance) {
+    return c[l].cross(materials[acc.material_of(prim, instance)].transparency);
   };
   const PacketMask blocked =
       any_hit_loaded<Watertight>(acc, pr, finite, t_min, t_max, cross, counts);

@@ -211,6 +211,15 @@ struct WalkCounts<false> {
   void add_to(TraversalCounts*) const {}
 };
 
+// What the closest-hit walk returns: a Hit without its instance, 16 bytes, which GCC 12
+// returns in registers.
+struct TriangleHit {
+  float t = kInfinity;
+  float u = 0.0f, v = 0.0f;
+  PrimRef prim = kNoHit;
+  bool found() const { return prim != kNoHit; }
+};
+
 // The closest triangle hit by `ray` in (t_min, t_max), or at t_max itself when `prior` is
 // a hit there (a plane or a sphere, which a triangle at the same t beats): a Hit with t, u,
 // v and prim = the triangle's index when one is found, else t = t_max and prim = prior.
@@ -220,12 +229,12 @@ struct WalkCounts<false> {
 // assembles that argument on the stack from 4-byte stores and reads it back as two 8-byte
 // halves, a load that no store can forward.
 template <int N, class Test, bool Finite, bool Count>
-inline Hit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
-                                 const Ray& ray, const RayPre& pre, const Test& test,
-                                 float t_min, float t_max, PrimRef prior,
-                                 TraversalCounts* counts) {
+inline TriangleHit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                         const Ray& ray, const RayPre& pre, const Test& test,
+                                         float t_min, float t_max, PrimRef prior,
+                                         TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
-  Hit h;
+  TriangleHit h;
   h.t = t_max;
   h.prim = prior;
   const NodeRay<N, Finite> nr(ray, pre);
@@ -373,18 +382,27 @@ MLIB_INLINE decltype(auto) with_walk_form(const Ray& ray, const RayPre& pre,
   return counts ? walk(no{}, yes{}) : walk(no{}, no{});
 }
 
+// The closest triangle hit into h when one is nearer than h.t (or as near, with a smaller
+// index than h.prim); returns whether one was. `instance` is what h.instance becomes then.
 template <int N, class Test>
-MLIB_INLINE void closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+MLIB_INLINE bool closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                   const Ray& ray, const Test& test, float t_min, Hit& h,
-                                  TraversalCounts* counts) {
-  if (bvh.root == kNoChild) return;
+                                  TraversalCounts* counts, std::uint32_t instance = kNoInstance) {
+  if (bvh.root == kNoChild) return false;
   const RayPre pre(ray);
-  if (!may_enter(bvh, ray, pre, t_min, h.t)) return;
-  const Hit t = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
+  if (!may_enter(bvh, ray, pre, t_min, h.t)) return false;
+  const TriangleHit t = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
     return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
         bvh, blocks, ray, pre, test, t_min, h.t, h.prim, counts);
   });
-  if (t.prim != h.prim) h = t;  // a triangle
+  // a triangle (of another instance, the same index may come nearer)
+  if (t.prim == h.prim && t.t == h.t) return false;
+  h.t = t.t;
+  h.u = t.u;
+  h.v = t.v;
+  h.prim = t.prim;
+  h.instance = instance;
+  return true;
 }
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular

@@ -138,7 +138,16 @@ void ClusterVisibility::gather(const Accel& accel, const Aabb& cluster, const Aa
   const auto triangles = [&](auto width) {  // the tree of the width accel's ISA traces
     return triangle_boxes<decltype(width)::value>(accel, region, kMaxOccluders, occluders_);
   };
-  complete_ = !cluster.is_empty() && with_bvh_width(accel.isa, triangles) &&
+  // An instance's triangles are not gathered: one whose box meets the region proves nothing.
+  const auto no_instance = [&] {
+    if (accel.instances.empty()) return true;
+    const BvhNode& root = accel.instance_bvh.nodes[0];
+    Aabb box;
+    box.lo = vec4(root.lo[0], root.lo[1], root.lo[2]);
+    box.hi = vec4(root.hi[0], root.hi[1], root.hi[2]);
+    return !overlap(padded(box), region);
+  };
+  complete_ = !cluster.is_empty() && no_instance() && with_bvh_width(accel.isa, triangles) &&
               sphere_boxes(accel, region, kMaxOccluders, occluders_);
   if (!complete_) return;
   // Planes: the cluster's 8 corners strictly on one side (with the margin), or no claim.

@@ -1,6 +1,8 @@
 // rt2/scene/mesh.cpp — mesh bounds, concatenation, clean-up and transforms.
 #include "rt2/scene/mesh.h"
 
+#include "rt2/scene/instance.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -81,37 +83,21 @@ AreaOutOfRange area_out_of_range(const Mesh& mesh) {
   return range;
 }
 
-namespace {
-
-// Row-major 3x3 rotation R = Rz * Ry * Rx (x first), angles in degrees.
-struct Mat3 {
-  float m[3][3];
-  vec4 apply(const vec4& v) const {
-    return vec4(m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
-                m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
-                m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]);
-  }
-};
-
-Mat3 rotation(const vec4& deg) {
-  const float k = std::numbers::pi_v<float> / 180.0f;
-  const float cx = std::cos(deg[0] * k), sx = std::sin(deg[0] * k);
-  const float cy = std::cos(deg[1] * k), sy = std::sin(deg[1] * k);
-  const float cz = std::cos(deg[2] * k), sz = std::sin(deg[2] * k);
-  // Rz * Ry * Rx
-  return {{{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
-           {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
-           {-sy, cy * sx, cy * cx}}};
-}
-
-}  // namespace
-
 void apply_transform(Mesh& mesh, const Transform& xf) {
-  const Mat3 r = rotation(xf.rotate_degrees);
-  for (vec4& p : mesh.positions) p = r.apply(p * xf.scale) + xf.translate;
+  // In float, the rotation rounded from rotation_matrix's (instance.h): p R S + t.
+  const auto rd = rotation_matrix(xf.rotate_degrees);
+  float r[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r[i][j] = float(rd[std::size_t(i)][std::size_t(j)]);
+  const auto apply = [&r](const vec4& v) {
+    return vec4(r[0][0] * v[0] + r[0][1] * v[1] + r[0][2] * v[2],
+                r[1][0] * v[0] + r[1][1] * v[1] + r[1][2] * v[2],
+                r[2][0] * v[0] + r[2][1] * v[1] + r[2][2] * v[2]);
+  };
+  for (vec4& p : mesh.positions) p = apply(p * xf.scale) + xf.translate;
   // Normals: inverse transpose of R*S is R*S^-1 (R orthonormal).
   const vec4 inv_scale(1.0f / xf.scale[0], 1.0f / xf.scale[1], 1.0f / xf.scale[2]);
-  for (vec4& n : mesh.normals) n = normalize(r.apply(n * inv_scale));
+  for (vec4& n : mesh.normals) n = normalize(apply(n * inv_scale));
   // A reflection (odd number of negative scales) flips the winding; keep faces consistent.
   if (xf.scale[0] * xf.scale[1] * xf.scale[2] < 0.0f)
     for (auto& f : mesh.faces) std::swap(f[1], f[2]);

@@ -24,6 +24,15 @@ int Scene::find_material(const std::string& name) const {
 std::size_t Scene::triangle_count() const {
   std::size_t n = 0;
   for (const Mesh& m : meshes) n += m.triangle_count();
+  for (const Mesh& m : instanced_meshes) n += m.triangle_count();
+  return n;
+}
+
+std::size_t Scene::placed_triangle_count() const {
+  std::size_t n = 0;
+  for (const Mesh& m : meshes) n += m.triangle_count();
+  for (const Instance& in : instances)
+    if (in.mesh < instanced_meshes.size()) n += instanced_meshes[in.mesh].triangle_count();
   return n;
 }
 
@@ -34,6 +43,13 @@ Aabb Scene::bounds() const {
     b.grow(s.center + vec4(s.radius, s.radius, s.radius));
   }
   for (const Mesh& m : meshes) b.grow(m.bounds());
+  if (!instances.empty()) {
+    std::vector<Aabb> object;
+    for (const Mesh& m : instanced_meshes) object.push_back(m.bounds());
+    for (const Instance& in : instances)
+      if (in.mesh < object.size() && !object[in.mesh].is_empty())
+        b.grow(world_box(object[in.mesh], in.to_world));
+  }
   return b;
 }
 
@@ -58,6 +74,15 @@ unsigned Scene::features(std::size_t light_count) const {
   for (const Mesh& mesh : meshes) {
     if (!mesh.faces.empty()) f |= kTriangles;
     for (auto m : mesh.face_materials) use(m);
+  }
+  for (const Instance& in : instances) {
+    if (in.mesh >= instanced_meshes.size()) continue;
+    const Mesh& mesh = instanced_meshes[in.mesh];
+    if (!mesh.faces.empty()) f |= kTriangles;
+    if (in.material != kMeshMaterials)
+      use(in.material);
+    else
+      for (auto m : mesh.face_materials) use(m);
   }
   for (std::size_t i = 0; i < materials.size(); ++i) {
     if (!used[i]) continue;
@@ -136,7 +161,7 @@ void Scene::validate() const {
     check(std::fabs(float(dot(planes[i].n, planes[i].n)) - 1.0f) < 1e-3f, at + "normal must be unit length");
     check(plane_materials[i] < n_mat, at + "material index out of range");
   }
-  for (const Mesh& m : meshes) {
+  const auto check_mesh = [&](const Mesh& m) {
     check(m.face_materials.size() == m.faces.size(), "mesh '" + m.name + "': one material per face");
     check(m.normals.empty() || m.normals.size() == m.positions.size(),
           "mesh '" + m.name + "': normals must match positions");
@@ -153,6 +178,25 @@ void Scene::validate() const {
       check(f[0] < m.positions.size() && f[1] < m.positions.size() && f[2] < m.positions.size(),
             "mesh '" + m.name + "': face index out of range");
     for (auto mi : m.face_materials) check(mi < n_mat, "mesh '" + m.name + "': material index out of range");
+  };
+  for (const Mesh& m : meshes) check_mesh(m);
+  for (const Mesh& m : instanced_meshes) {
+    check_mesh(m);
+    check(!m.faces.empty(), "mesh '" + m.name + "': an instanced mesh needs triangles");
+  }
+  std::vector<AreaRange> areas;
+  if (!instances.empty())
+    for (const Mesh& m : instanced_meshes) areas.push_back(area_range(m));
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const Instance& in = instances[i];
+    const std::string at = "instance " + std::to_string(i) + ": ";
+    check(in.mesh < instanced_meshes.size(), at + "mesh index out of range");
+    check(in.material == kMeshMaterials || in.material < n_mat, at + "material index out of range");
+    check(in.to_world.finite(), at + "the transform must be finite");
+    check(std::isnormal(in.to_world.determinant()) && in.to_world.inverse().finite(),
+          at + "the transform must be invertible");
+    check(areas_fit_float(areas[in.mesh], in.to_world),
+          at + "the transform makes its triangles too large or too small for float arithmetic");
   }
 }
 
@@ -169,6 +213,8 @@ void recenter_on_camera(Scene& scene) {
   for (Plane& p : scene.planes) p.d += float(dot(p.n, c));
   for (Mesh& m : scene.meshes)
     for (vec4& v : m.positions) v -= c;
+  for (Instance& in : scene.instances)
+    for (int a = 0; a < 3; ++a) in.to_world.m[std::size_t(a)][3] -= double(c[a]);
 }
 
 // Extra lights sit on a ring of radius 1.5 R around the scene's centre, at height

@@ -13,6 +13,7 @@
 #include "rt2/scene/animation.h"
 #include "rt2/scene/camera.h"
 #include "rt2/scene/features.h"
+#include "rt2/scene/instance.h"
 #include "rt2/geometry/plane.h"
 #include "rt2/geometry/sphere.h"
 #include "rt2/scene/light.h"
@@ -73,6 +74,10 @@ struct Scene {
   std::vector<Plane> planes;
   std::vector<std::uint32_t> plane_materials;
   std::vector<Mesh> meshes;
+  // Meshes placed only by `instances`, in their own coordinates: each is traced through one
+  // tree that all its instances share (rt2/bvh/accel.h), its triangles stored once.
+  std::vector<Mesh> instanced_meshes;
+  std::vector<Instance> instances;
 
   std::size_t degenerate_triangles = 0;  // dropped by the loaders, reported by rt2cpr
   // The animations of the file the scene was loaded from (glTF; none: it does not move),
@@ -86,8 +91,11 @@ struct Scene {
   // Index of the material called `name`, or -1.
   int find_material(const std::string& name) const;
 
+  // The triangles stored: the meshes' and the instanced meshes' (each once).
   std::size_t triangle_count() const;
-  // Bounds of the bounded geometry (spheres and meshes); empty if there is none.
+  // The triangles in the world: the meshes' and every instance's.
+  std::size_t placed_triangle_count() const;
+  // Bounds of the bounded geometry (spheres, meshes, instances); empty if there is none.
   Aabb bounds() const;
   // The scene's size for the ray-origin offset (rt2/geometry/offset.h): the largest extent
   // of its bounded geometry, or 1 when it has none (planes only).
@@ -107,7 +115,8 @@ struct Scene {
 // where the pixels come from, camera-relative coordinates keep full precision; input
 // coordinates that are exact floats stay exact (the subtraction of two nearby floats is
 // exact).
-// Planes keep their normal and move their offset: D' = D + N·c.
+// Planes keep their normal and move their offset: D' = D + N·c; instances move their
+// translation.
 void recenter_on_camera(Scene& scene);
 
 // An interval of light ranges, lo <= hi: each light's drawn uniformly in it.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -131,6 +132,12 @@ inline Hit brute_force(const Accel& acc, const Ray& r, float t_min, float t_max,
   }
   if (!h.found()) h.t = kInfinity;
   return h;
+}
+
+// Whether two hits are the same bits: t, u, v, the primitive and the instance.
+inline bool bitwise_same(const Hit& a, const Hit& b) {
+  return std::memcmp(&a.t, &b.t, sizeof a.t) == 0 && std::memcmp(&a.u, &b.u, sizeof a.u) == 0 &&
+         std::memcmp(&a.v, &b.v, sizeof a.v) == 0 && a.prim == b.prim && a.instance == b.instance;
 }
 
 // The built-in scene with a glass sphere and a second light: every feature at once (glass,

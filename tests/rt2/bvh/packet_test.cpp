@@ -22,11 +22,6 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-bool bitwise_same(const Hit& a, const Hit& b) {
-  return std::memcmp(&a.t, &b.t, sizeof a.t) == 0 && std::memcmp(&a.u, &b.u, sizeof a.u) == 0 &&
-         std::memcmp(&a.v, &b.v, sizeof a.v) == 0 && a.prim == b.prim;
-}
-
 // A closed mesh, a triangle soup, two spheres and a ground plane, scaled by `scale` and moved
 // by `offset`.
 Scene packet_scene(float scale = 1.0f, vec4 offset = vec4(0.0f)) {
@@ -95,7 +90,7 @@ Compared compare(const Scene& scene, const Batch& b, const std::string& what) {
       trace_occluded_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(),
                              b.packets(), occ_packed.data(), &counts);
       for (std::size_t i = 0; i < n; ++i) {
-        const bool same_hit = bitwise_same(single[i], packed[i]);
+        const bool same_hit = test::bitwise_same(single[i], packed[i]);
         const bool same_occ = occ_single[i] == occ_packed[i];
         c.closest_mismatches += !same_hit;
         c.occluded_mismatches += !same_occ;
@@ -373,7 +368,7 @@ TEST(Packets, ColumnPacketsOfAnyLanesEqualSingleRaysBitForBit) {
           ++checked;
           hits += single[i].found();
           partial += passed[i] > 0.0f && passed[i] < 1.0f;
-          ASSERT_TRUE(bitwise_same(single[i], hit[l]))
+          ASSERT_TRUE(test::bitwise_same(single[i], hit[l]))
               << isa_name(isa) << " watertight " << watertight << " ray " << i << " lane " << l
               << ": single t " << single[i].t << " prim " << single[i].prim << ", packet t "
               << hit[l].t << " prim " << hit[l].prim;

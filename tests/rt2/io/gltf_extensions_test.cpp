@@ -476,7 +476,7 @@ TEST(GltfConfinement, FilesOutsideTheAssetsFolderAreRefusedUnlessAllowed) {
         uri + R"("}])");
   };
   const std::string absolute = (dir.root() / "outside" / "secret.png").string();
-  for (const std::string uri :
+  for (const std::string& uri :
        {std::string("../outside/secret.png"), absolute, std::string("link/secret.png"),
         std::string("%2E%2E/outside/secret.png")}) {
     const std::string path = dir.write("asset/x.gltf", with_image(uri));

@@ -261,6 +261,57 @@ TEST(SceneIo, MeshTransformScalesRotatesThenTranslates) {
   expect_near_vec(n.positions[n.faces[0][2]], 0, 3, 0);
 }
 
+TEST(SceneIo, InstancesShareOneMeshAndPlaceItByTransformOrMatrix) {
+  TempDir dir;
+  dir.write("tri.obj", kTriangleObj);
+  const Scene s = load_text(
+      dir, kCamera + kRed +
+               "[[instances]]\nmesh = \"tri.obj\"\nscale = 2\nrotate = [0, 0, 90]\n"
+               "translate = [10, 0, 0]\n"
+               "[[instances]]\nmesh = \"tri.obj\"\nmaterial = \"red\"\n"
+               "matrix = [[1, 0, 0, 5], [0, 3, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]\n");
+  ASSERT_EQ(s.instanced_meshes.size(), 1u);  // the file read once
+  ASSERT_EQ(s.instances.size(), 2u);
+  EXPECT_TRUE(s.meshes.empty());
+  EXPECT_EQ(s.triangle_count(), 1u);
+  EXPECT_EQ(s.placed_triangle_count(), 2u);
+  // (1,0,0) -> scale (2,0,0) -> rotate 90 about z (0,2,0) -> translate (10,2,0)
+  const auto p = s.instances[0].to_world.point({1, 0, 0});
+  EXPECT_NEAR(p[0], 10.0, 1e-12);
+  EXPECT_NEAR(p[1], 2.0, 1e-12);
+  EXPECT_EQ(s.instances[0].material, kMeshMaterials);
+  EXPECT_EQ(s.instances[1].material, std::uint32_t(s.find_material("red")));
+  EXPECT_EQ(s.instances[1].to_world.m[1][1], 3.0);
+  EXPECT_EQ(s.instances[1].to_world.m[0][3], 5.0);
+  const Aabb b = s.bounds();
+  EXPECT_NEAR(b.lo[0], 5.0f, 1e-4f);
+  EXPECT_NEAR(b.hi[0], 10.0f, 1e-4f);
+}
+
+TEST(SceneIo, BadInstancesAreRefusedWithTheirKeyAndLine) {
+  TempDir dir;
+  dir.write("tri.obj", kTriangleObj);
+  const auto bad = [&](const std::string& body, int line, std::string_view text) {
+    SCOPED_TRACE(body);
+    const std::string path = dir.write("scene.toml", kCamera + "[[instances]]\n" + body);
+    expect_message(error_of([&] { load_scene(path); }), path, line, text);
+  };
+  const std::string tri = "mesh = \"" + dir.path("tri.obj") + "\"\n";
+  bad(tri + "scale = [1, 0, 1]\n", 6, "must not be zero");
+  bad(tri + "matrix = [[1, 0, 0, 0], [0, 1, 0, 0], [1, 0, 0, 0]]\n", 4, "singular");
+  bad(tri + "matrix = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 1, 1]]\n", 6,
+      "must be 0 0 0 1");
+  bad(tri + "matrix = [[1, 0, 0, 0], [0, 1, 0, 0]]\n", 6, "3 or 4 rows");
+  bad(tri + "matrix = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]\ntranslate = [1, 2, 3]\n", 7,
+      "give matrix or translate");
+  bad(tri + "matrix = [[1e300, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]\n", 6, "matrix[0][0]");
+  bad(tri + "material = \"nothing\"\n", 6, "undefined material 'nothing'");
+  bad(tri + "scale = 1e15\n", 4, "too large or too small for float arithmetic");
+  bad(tri + "scale = [1e-14, 1, 1]\n", 4, "too large or too small for float arithmetic");
+  bad("mesh = \"none.obj\"\n", 5, "none.obj");
+  bad(tri + "rotation = [0, 0, 0]\n", 6, "unknown key 'rotation'");
+}
+
 TEST(SceneIo, MeshMaterialOverridesTheMtlMaterials) {
   TempDir dir;
   const Scene s = load_text(dir, kCamera + kRed + "[[meshes]]\nfile = \"" +
