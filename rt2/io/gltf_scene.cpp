@@ -414,7 +414,8 @@ class GltfReader {
   void pose_nodes();
   void walk(int root, const Mat4& parent);
   void add_primitive(int mesh_index, int prim_index, const Mat4& world,
-                     const std::vector<double>& weights);
+                     const std::vector<double>& weights, Mesh* into = nullptr);
+  void place_meshes();
   void set_camera(int node, int camera_index, const Mat4& world);
   void add_light(int node, const tinygltf::Value& ext, const Mat4& world);
   void finish_lights(const Framing& frame);
@@ -447,6 +448,13 @@ class GltfReader {
     Vec3d position, direction;
   };
   std::vector<PendingLight> lights_;
+  // The nodes' meshes as the walk meets them: read once the walk has counted each mesh's uses.
+  struct Placement {
+    int mesh;
+    Mat4 world;
+    std::vector<double> weights;
+  };
+  std::vector<Placement> placements_;
 };
 
 void GltfReader::warn_once(const std::string& key, const std::string& msg) {
@@ -975,9 +983,7 @@ void GltfReader::walk(int root, const Mat4& parent) {
         fail(at + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
              std::to_string(model_.meshes.size()) + " meshes)");
       if (n.skin >= 0) warn_once("skin", "skins are not supported; meshes are drawn unskinned");
-      const std::vector<double> weights = morph_weights(node, at);
-      for (std::size_t p = 0; p < model_.meshes[std::size_t(n.mesh)].primitives.size(); ++p)
-        add_primitive(n.mesh, int(p), world, weights);
+      placements_.push_back({n.mesh, world, morph_weights(node, at)});
     }
     on_path_[std::size_t(node)] = 1;
     stack.push_back({node, world, 0});
@@ -997,8 +1003,53 @@ void GltfReader::walk(int root, const Mat4& parent) {
   }
 }
 
+// A mesh that two or more nodes place, without morph targets (whose weights are per node),
+// is read once in its own coordinates and placed by instances (rt2/scene/instance.h); a
+// mesh placed once is read into the world, where one tree over all such meshes traces
+// faster than a tree per mesh. A node whose transform cannot be inverted (a scale of 0,
+// which hides it) or would take its triangles beyond float arithmetic is read into the
+// world too, where its degenerate triangles are dropped.
+void GltfReader::place_meshes() {
+  std::vector<int> uses(model_.meshes.size(), 0);
+  for (const Placement& p : placements_) ++uses[std::size_t(p.mesh)];
+  // glTF mesh -> instanced mesh: -1 not read yet, -2 nothing to place
+  std::vector<int> instanced(model_.meshes.size(), -1);
+  std::vector<AreaRange> areas;
+  for (const Placement& p : placements_) {
+    const std::size_t m = std::size_t(p.mesh);
+    const std::size_t primitives = model_.meshes[m].primitives.size();
+    Affine a;
+    for (std::size_t r = 0; r < 3; ++r)
+      for (std::size_t c = 0; c < 4; ++c) a.m[r][c] = p.world[c * 4 + r];
+    bool share = uses[m] > 1 && p.weights.empty() && std::isnormal(a.determinant()) &&
+                 a.inverse().finite();
+    if (share && instanced[m] == -1) {
+      Mesh merged;
+      merged.name = fs::path(path_).filename().string() + ":mesh " + named(p.mesh, model_.meshes[m].name);
+      for (std::size_t k = 0; k < primitives; ++k)
+        add_primitive(p.mesh, int(k), kIdentity, p.weights, &merged);
+      instanced[m] = merged.faces.empty() ? -2 : int(scene_.instanced_meshes.size());
+      if (instanced[m] >= 0) {
+        areas.push_back(area_range(merged));
+        scene_.instanced_meshes.push_back(std::move(merged));
+      }
+    }
+    if (share && instanced[m] == -2) continue;
+    share = share && areas_fit_float(areas[std::size_t(instanced[m])], a);
+    if (!share) {
+      for (std::size_t k = 0; k < primitives; ++k) add_primitive(p.mesh, int(k), p.world, p.weights);
+      continue;
+    }
+    Instance in;
+    in.mesh = std::uint32_t(instanced[m]);
+    in.to_world = a;
+    scene_.instances.push_back(in);
+  }
+  placements_.clear();
+}
+
 void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world,
-                               const std::vector<double>& weights) {
+                               const std::vector<double>& weights, Mesh* into) {
   const tinygltf::Mesh& gm = model_.meshes[std::size_t(mesh_index)];
   const tinygltf::Primitive& prim = gm.primitives[std::size_t(prim_index)];
   const std::string at =
@@ -1182,7 +1233,10 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
   }
   mesh.face_materials.assign(mesh.faces.size(), scene_material);
   scene_.degenerate_triangles += mesh.drop_degenerate();
-  if (!mesh.faces.empty()) scene_.meshes.push_back(std::move(mesh));
+  if (into)
+    into->append(mesh);
+  else if (!mesh.faces.empty())
+    scene_.meshes.push_back(std::move(mesh));
 }
 
 void GltfReader::set_camera(int node, int camera_index, const Mat4& world) {
@@ -1305,8 +1359,10 @@ Scene GltfReader::read() {
   }
   pose_nodes();
   for (const int r : roots) walk(r, kIdentity);
-  if (!animate_ && scene_.meshes.empty()) return std::move(scene_);  // still_framing's reading
-  if (scene_.meshes.empty())
+  place_meshes();
+  const bool empty = scene_.meshes.empty() && scene_.instances.empty();
+  if (!animate_ && empty) return std::move(scene_);  // still_framing's reading
+  if (empty)
     fail(scene_.degenerate_triangles
              ? "all " + std::to_string(scene_.degenerate_triangles) + " triangles are degenerate"
              : "no triangles in the scene");

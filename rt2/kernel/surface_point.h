@@ -60,9 +60,12 @@ inline SurfacePoint surface_at(const Accel& acc, const Ray& ray, const Hit& h,
     if (acc.tri_normals.empty()) {
       s.ns = s.ng;
     } else {
+      // each vertex's normal placed, as the loaders place a flattened mesh's, then interpolated
       const auto& n = acc.tri_normals[i];
-      s.ns = normalize(acc.instances[h.instance].normals.direction((1.0f - h.u - h.v) * n[0] +
-                                                                    h.u * n[1] + h.v * n[2]));
+      const AffineColumns& to_world = acc.instances[h.instance].normals;
+      s.ns = normalize((1.0f - h.u - h.v) * normalize(to_world.direction(n[0])) +
+                       h.u * normalize(to_world.direction(n[1])) +
+                       h.v * normalize(to_world.direction(n[2])));
     }
   } else if (prim_tag(h.prim) == kTriangleTag) {
     const Triangle& tri = acc.tris[i];

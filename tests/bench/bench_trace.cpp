@@ -60,6 +60,12 @@ namespace {
 //           arrays (the same floats rt2's triangles are made of), RTC_BUILD_QUALITY_MEDIUM;
 //           scene flags none for test=fast, RTC_SCENE_FLAG_ROBUST for test=watertight
 //           (Embree's mode against cracks between neighbouring triangles).
+// --instanced: both engines trace the mesh as one instance, placed by T = a turn of 90
+// degrees about y, then a translation to c: the instanced mesh is T^-1 of the mesh (in double,
+// rounded to float), so the world holds the same triangles to rounding and the ray sets are
+// the same. rt2: Scene::instanced_meshes and one Instance (the two-level tree); Embree: the
+// mesh's scene, committed, in an RTC_GEOMETRY_TYPE_INSTANCE of a top scene with the same
+// flags (its build time is both commits).
 
 using bench::D3;
 using bench::RaySet;
@@ -405,6 +411,7 @@ struct Options {
   int width = 1024, height = 768, reps = 7, build_reps = 5, show = 0;
   std::size_t incoherent_rays = std::size_t(1) << 20, chunk = 4096;
   bool embree = false;
+  bool instanced = false;
   std::string embree_config;  // appended to every Embree device's configuration
   rt2::Isa isa = rt2::best_isa();  // rt2's ray kernels
   // The configuration string of an Embree device: `base` plus embree_config.
@@ -422,13 +429,37 @@ using EmbreeScene = void*;  // never used
 
 // The mesh under test and what the ray sets are made from.
 struct Model {
-  rt2::Scene scene;  // frame_obj's, without its ground plane
+  rt2::Scene scene;  // frame_obj's, without its ground plane: what rt2 traces
+  rt2::Scene world;  // the same with the mesh in the world (the ray sets are made with it)
   std::string name;
   std::size_t tris = 0;
+  rt2::Aabb box;  // the mesh's bounds
   vec4 light;
   float scale = 1.0f;  // S
-  const rt2::Mesh& mesh() const { return scene.meshes[0]; }
+  const rt2::Mesh& world_mesh() const { return world.meshes[0]; }
+  // What Embree's triangle geometry holds: the mesh, or with --instanced the instanced mesh.
+  const rt2::Mesh& mesh() const {
+    return scene.instances.empty() ? scene.meshes[0] : scene.instanced_meshes[0];
+  }
 };
+
+// --instanced: the mesh as one instance placed by a turn of 90 degrees about y, then a
+// translation to the centre of its box.
+void instance_the_mesh(Model& m) {
+  const vec4 c = m.box.center();
+  rt2::Instance in;
+  in.to_world.m = {{{0, 0, 1, c[0]}, {0, 1, 0, c[1]}, {-1, 0, 0, c[2]}}};
+  const rt2::Affine to_object = in.to_world.inverse();
+  rt2::Mesh object = m.scene.meshes[0];
+  for (vec4& p : object.positions) {
+    const auto q = to_object.point({p[0], p[1], p[2]});
+    p = vec4(float(q[0]), float(q[1]), float(q[2]));
+  }
+  object.normals.clear();
+  m.scene.meshes.clear();
+  m.scene.instanced_meshes = {std::move(object)};
+  m.scene.instances = {in};
+}
 
 // The ray sets asked for, in the order primary, incoherent, shadow, reflection.
 std::vector<RaySet> make_sets(const Options& o, const Model& m, const rt2::Accel& acc) {
@@ -436,7 +467,7 @@ std::vector<RaySet> make_sets(const Options& o, const Model& m, const rt2::Accel
   const bool shadow = contains(o.sets, "shadow"), reflection = contains(o.sets, "reflection");
   RaySet primary;
   if (contains(o.sets, "primary") || shadow || reflection)
-    primary = primary_set(m.scene.camera, o.width, o.height);
+    primary = primary_set(m.world.camera, o.width, o.height);
   SurfaceHits sh;
   if (shadow || reflection) {
     std::vector<Hit> hits(primary.size());
@@ -448,7 +479,7 @@ std::vector<RaySet> make_sets(const Options& o, const Model& m, const rt2::Accel
     sh = surface_hits(primary, hits, acc, m.scale);
   }
   if (contains(o.sets, "incoherent"))
-    sets.push_back(incoherent_set(m.scene.bounds(), o.incoherent_rays));
+    sets.push_back(incoherent_set(m.box, o.incoherent_rays));
   if (shadow) sets.push_back(shadow_set(primary, sh, m.light));
   if (reflection) sets.push_back(reflection_set(primary, sh));
   if (contains(o.sets, "primary")) sets.insert(sets.begin(), std::move(primary));
@@ -489,6 +520,7 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
         bench::g_embree_bytes = 0;
         const auto t1 = std::chrono::steady_clock::now();
         rtcCommitScene(s);
+        if (o.instanced) s = bench::embree_instance_of(dev, s, m.scene.instances[0], watertight);
         embree_ms[watertight].push_back(ms_since(t1));
         embree_bytes[watertight] = bench::g_embree_bytes;
         rtcReleaseScene(s);
@@ -653,6 +685,8 @@ int parse(int argc, char** argv, Options& o) {
   app.add_option("--chunk", o.chunk, "rays per parallel task (default 4096; a multiple of 16)")
       ->check(CLI::Range(std::size_t(16), std::size_t(1) << 24));
   app.add_flag("--no-embree", no_embree, "rt2 only, even when built with Embree");
+  app.add_flag("--instanced", o.instanced,
+               "trace the mesh as one instance (a two-level tree) in both engines");
   std::string isa;
   app.add_option("--isa", isa, "rt2's ray kernels: sse41, avx2 or avx512 (default: the widest "
                                "this CPU runs)");
@@ -720,16 +754,19 @@ int main(int argc, char** argv) {
   }
   m.name = std::filesystem::path(o.obj).stem().string();
   m.tris = m.mesh().faces.size();
-  const rt2::Aabb box = m.scene.bounds();
-  const vec4 half = box.extent() * 0.5f;
+  m.box = m.scene.bounds();
+  const vec4 half = m.box.extent() * 0.5f;
   const float big_r = std::sqrt(float(dot(half, half)));
-  m.light = box.center() + vec4(big_r, 3.0f * big_r, 2.0f * big_r);
+  m.light = m.box.center() + vec4(big_r, 3.0f * big_r, 2.0f * big_r);
   m.scale = m.scene.size();
+  m.world = m.scene;
+  if (o.instanced) instance_the_mesh(m);
 
   std::printf("cpu=\"%s\" hw_threads=%u\n", rt2::cpu_model().c_str(),
               std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("rt2_mode=%s rt2_arch=%s rt2_isa=%s rt2_width=%d chunk=%zu\n", RT2_BENCH_MODE,
-              RT2_BENCH_ARCH, rt2::isa_name(o.isa), rt2::bvh_width(o.isa), o.chunk);
+  std::printf("rt2_mode=%s rt2_arch=%s rt2_isa=%s rt2_width=%d chunk=%zu instanced=%d\n",
+              RT2_BENCH_MODE, RT2_BENCH_ARCH, rt2::isa_name(o.isa), rt2::bvh_width(o.isa),
+              o.chunk, int(o.instanced));
 #if defined(RT2_HAVE_EMBREE)
   if (o.embree) {
     RTCDevice probe = bench::embree_device(o.device_config("").c_str());
@@ -758,11 +795,14 @@ int main(int argc, char** argv) {
     for (bool watertight : o.tests) {
       RTCScene s = bench::embree_scene(dev, m.mesh(), watertight);
       rtcCommitScene(s);
+      if (o.instanced) s = bench::embree_instance_of(dev, s, m.scene.instances[0], watertight);
       embree_scenes[watertight] = s;
     }
 #endif
-  const bench::FaceLocator faces(m.mesh());
-  const std::vector<RaySet> sets = make_sets(o, m, acc);
+  const bench::FaceLocator faces(m.world_mesh());
+  // The ray sets come from the mesh in the world: the same rays with and without --instanced.
+  const std::vector<RaySet> sets =
+      make_sets(o, m, o.instanced ? rt2::Accel::build(m.world, rt2::BvhConfig{}, o.isa) : acc);
   std::vector<std::unique_ptr<tbb::task_arena>> arenas;
   for (int t : o.threads) arenas.push_back(std::make_unique<tbb::task_arena>(t));
   for (const RaySet& set : sets) trace_and_report(o, m, set, acc, embree_scenes, faces, arenas);

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "rt2/scene/instance.h"
 #include "rt2/scene/mesh.h"
 #include "tests/bench/trace_runner.h"
 
@@ -61,6 +62,27 @@ inline RTCScene embree_scene(RTCDevice dev, const rt2::Mesh& mesh, bool robust) 
   rtcAttachGeometry(scene, g);
   rtcReleaseGeometry(g);
   return scene;
+}
+
+// A top scene holding `mesh_scene` (committed) as one instance placed by `in`, committed,
+// with the flags of embree_scene; the top scene holds the only reference to `mesh_scene`.
+inline RTCScene embree_instance_of(RTCDevice dev, RTCScene mesh_scene, const rt2::Instance& in,
+                                   bool robust) {
+  RTCScene top = rtcNewScene(dev);
+  rtcSetSceneFlags(top, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+  rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_MEDIUM);
+  RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(g, mesh_scene);
+  float xfm[12];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) xfm[r * 4 + c] = float(in.to_world.m[std::size_t(r)][std::size_t(c)]);
+  rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(top, g);
+  rtcReleaseGeometry(g);
+  rtcReleaseScene(mesh_scene);
+  rtcCommitScene(top);
+  return top;
 }
 
 inline Hit from_embree(const RTCRayHit& rh) {

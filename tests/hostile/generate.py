@@ -737,7 +737,7 @@ def gltf():
             nxt = [first + 2 * i + 2, first + 2 * i + 3]
             out += [{"children": nxt}, {"children": nxt}]
         return out + [dict(last), dict(last)]
-    error("gltf_shared_nodes_explode", "gltf", "primitive instances",
+    error("gltf_shared_nodes_explode", "gltf", "node instances",
           gltf=gltf_text(nodes=doubling(40, 0, {"mesh": 0})))
     error("gltf_shared_empty_nodes_explode", "gltf", "node instances",
           gltf=gltf_text(nodes=[{"mesh": 0, "children": [1, 2]}] + doubling(40, 1, {})))

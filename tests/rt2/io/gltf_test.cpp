@@ -12,10 +12,12 @@
 #include <vector>
 
 #include "rt2/base/error.h"
+#include "rt2/image/image_compare.h"
 #include "rt2/io/scene_io.h"
 #include "tests/rt2/error_of.h"
 #include "tests/rt2/io/gltf_file.h"
 #include "tests/rt2/temp_dir.h"
+#include "tests/rt2/test_util.h"
 
 namespace rt2 {
 namespace {
@@ -58,6 +60,50 @@ TEST(Gltf, NodeTransformsComposeParentTimesChild) {
   expect_near(m.positions[2], 9, 2, 3);
   ASSERT_EQ(m.normals.size(), 3u);
   expect_near(m.normals[0], 0, 0, 1);
+}
+
+// A mesh that several nodes place is read once and placed by instances; the picture is
+// that of the same nodes placing copies of it (each copy read into the world).
+TEST(Gltf, AMeshSharedByNodesBecomesInstancesThatRenderAsCopies) {
+  const test::TempDir dir("gltf");
+  GltfFile f;
+  // a tetrahedron with a normal per vertex (pointing away from its centre)
+  f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, "VEC3", 3);
+  const float k = 1.0f / std::sqrt(3.0f);
+  f.floats({-k, -k, -k, 1, 0, 0, 0, 1, 0, 0, 0, 1}, "VEC3", 3);
+  f.accessor(std::vector<std::uint16_t>{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}, 5123, "SCALAR", 12);
+  const std::string primitive = R"({"primitives":[{"attributes":{"POSITION":0,"NORMAL":1},"indices":2}]})";
+  const std::string placements =
+      R"("nodes":[{"mesh":M0,"translation":[-1.5,0,0]},)"
+      R"({"mesh":M1,"rotation":[0,0.38268343,0,0.92387953],"scale":[1,2,1]},)"
+      R"({"mesh":M2,"translation":[1.5,0,0],"scale":[-1,1,1]},)"
+      R"({"camera":0,"translation":[0.2,1.5,6],"rotation":[-0.1305262,0,0,0.9914449]}],)"
+      R"("cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}],)"
+      R"("scenes":[{"nodes":[0,1,2,3]}])";
+  const auto file = [&](bool shared) {
+    std::string nodes = placements;
+    for (int i = 0; i < 3; ++i)
+      nodes.replace(nodes.find("M" + std::to_string(i)), 2, shared ? "0" : std::to_string(i));
+    const std::string meshes = shared ? primitive : primitive + "," + primitive + "," + primitive;
+    return f.json(R"(,"meshes":[)" + meshes + "]," + nodes);
+  };
+  const Scene inst = load_scene(dir.write("shared.gltf", file(true)));
+  Scene flat = load_scene(dir.write("copies.gltf", file(false)));
+  // The framing light stands by the scene's box, which the instances' boxes (their mesh's box
+  // placed) make a little larger: the same light for both.
+  flat.lights = inst.lights;
+  ASSERT_EQ(inst.instanced_meshes.size(), 1u);
+  EXPECT_EQ(inst.instances.size(), 3u);
+  EXPECT_TRUE(inst.meshes.empty());
+  EXPECT_EQ(flat.meshes.size(), 3u);
+  EXPECT_TRUE(flat.instances.empty());
+  EXPECT_EQ(inst.placed_triangle_count(), flat.triangle_count());
+  RenderSettings st;
+  st.width = 120;
+  st.height = 90;
+  st.depth = 4;
+  const ImageError e = compare_images(test::render_scene(inst, st), test::render_scene(flat, st));
+  EXPECT_GT(e.psnr, 60.0);
 }
 
 TEST(Gltf, NormalsTakeTheInverseTransposeAndAreRenormalized) {
