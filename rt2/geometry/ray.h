@@ -41,6 +41,7 @@ struct RayPre {
   vec4 org;
   vec4 dir;
   vec4 inv_dir;
+  RayPre() = default;
   explicit RayPre(const Ray& r)
       : org(r.org), dir(r.dir),
         inv_dir(mlib::simd::zero_w(vec4(vec4(1.0f, 1.0f, 1.0f, 0.0f) / r.dir).m128())) {}

@@ -45,7 +45,7 @@ MLIB_INLINE bool occluded(const Accel& acc, const Ray& ray, float t_min, float t
 // any_hit for each ray of a packet loaded into pr whose lane is in `finite` (load_finite's
 // answer): cross(l, prim, instance) for lane l's surfaces; returns the lanes for which it
 // returned true. Planes and spheres are tested kRayLanes rays at a time, the triangles
-// walked as one packet when the rays allow it, the instances ray by ray. t_max holds kPacketSize floats (all read; those outside
+// walked as one packet when the rays allow it, and so the instances' trees. t_max holds kPacketSize floats (all read; those outside
 // `finite` are not used).
 template <bool Watertight, class Cross>
 inline PacketMask any_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketMask finite,
@@ -57,15 +57,8 @@ inline PacketMask any_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, Packe
   const WideBvh<kWidth>& bvh = acc.wide<kWidth>();
   if (!open) return blocked;
   const auto instanced = [&] {
-    if (acc.instances.empty()) return;
-    for (PacketMask m = finite & ~blocked; m; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      if (any_instanced<Watertight>(
-              acc, pr.ray(l), t_min, t_max[l],
-              [&](PrimRef prim, std::uint32_t instance) { return cross(l, prim, instance); },
-              counts))
-        blocked |= PacketMask(1) << l;
-    }
+    blocked |= any_instanced_packet<Watertight>(acc, pr, finite & ~blocked, t_min, t_max, cross,
+                                                counts);
   };
   if (bvh.root == kNoChild) {
     instanced();

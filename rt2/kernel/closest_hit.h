@@ -35,7 +35,9 @@ MLIB_INLINE Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float
   closest_triangle<kWidth>(acc.wide<kWidth>(), acc.blocks.data(), ray, TriangleTest<Watertight>(ray),
                            t_min, h, counts);
   closest_instanced<Watertight>(acc, ray, t_min, h, counts);
-  if (!h.found()) h.t = kInfinity;
+  // A miss as a fresh value: h is in memory when an instance walk took it (a field stored
+  // alone, then the whole read back, is a load no store can forward).
+  if (!h.found()) return Hit{};
   return h;
 }
 
@@ -43,7 +45,7 @@ MLIB_INLINE Hit closest_hit(const Accel& acc, const Ray& ray, float t_min, float
 // t_min, t_max[l]) for the lanes l of `lanes` (bit for bit the same; `finite`: those
 // without a NaN coordinate, load_finite's answer), planes and spheres tested kRayLanes rays
 // at a time, the triangles walked as one packet when the rays allow it
-// (packet_traverse.h), the instances ray by ray. t_max holds kPacketSize floats (all read; those outside `lanes` are
+// (packet_traverse.h), and so the instances' trees. t_max holds kPacketSize floats (all read; those outside `lanes` are
 // not used); only the lanes of `lanes` of hits are written.
 template <bool Watertight>
 inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketMask lanes,
@@ -76,11 +78,7 @@ inline void closest_hit_loaded(const Accel& acc, PacketRays<kWidth>& pr, PacketM
                                  hits[l], counts);
       }
     }
-    if (!acc.instances.empty())
-      for (PacketMask m = finite; m; m &= m - 1) {
-        const int l = std::countr_zero(m);
-        closest_instanced<Watertight>(acc, pr.ray(l), t_min, hits[l], counts);
-      }
+    closest_instanced_packet<Watertight>(acc, pr, finite, t_min, hits, counts);
   }
   for (PacketMask m = lanes; m; m &= m - 1) {
     const int l = std::countr_zero(m);

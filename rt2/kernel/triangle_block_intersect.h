@@ -200,7 +200,9 @@ struct FastTriangleTest : PairQueries<FastTriangleTest> {
   Ray ray;
 
   FastTriangleTest() = default;  // unset, to be assigned (an array of per-ray tests)
-  explicit FastTriangleTest(const Ray& r) : ray(r) {}
+  // Copied half by half: a ray just made and stored as two halves (an instance's, kernel/
+  // instances.h) read back whole is a load no store can forward.
+  explicit FastTriangleTest(const Ray& r) : ray(r.org, r.dir) {}
 
   // The undivided quantities, and the lanes that may hit in (t_min, t_max].
   struct Undivided {

@@ -382,8 +382,17 @@ MLIB_INLINE decltype(auto) with_walk_form(const Ray& ray, const RayPre& pre,
   return counts ? walk(no{}, yes{}) : walk(no{}, no{});
 }
 
-// The closest triangle hit into h when one is nearer than h.t (or as near, with a smaller
-// index than h.prim); returns whether one was. `instance` is what h.instance becomes then.
+// The prior a walk of instance `instance`'s tree starts from, for ties at h.t: h.prim, or
+// h.prim + 1 when h is a hit of an instance of a larger index (or of the world's own
+// geometry), so that the same triangle at the same t goes to the smaller instance. Ties thus
+// go to the smaller (primitive, instance), whatever order the instances are walked in.
+MLIB_INLINE PrimRef tie_prior(const Hit& h, std::uint32_t instance) {
+  return h.found() && instance < h.instance ? h.prim + 1 : h.prim;
+}
+
+// The closest triangle hit into h when one is nearer than h.t (or as near, and first by
+// (index, instance), tie_prior); returns whether one was. `instance` is what h.instance
+// becomes then.
 template <int N, class Test>
 MLIB_INLINE bool closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks,
                                   const Ray& ray, const Test& test, float t_min, Hit& h,
@@ -391,17 +400,13 @@ MLIB_INLINE bool closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
   if (bvh.root == kNoChild) return false;
   const RayPre pre(ray);
   if (!may_enter(bvh, ray, pre, t_min, h.t)) return false;
+  const PrimRef prior = tie_prior(h, instance);
   const TriangleHit t = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
     return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
-        bvh, blocks, ray, pre, test, t_min, h.t, h.prim, counts);
+        bvh, blocks, ray, pre, test, t_min, h.t, prior, counts);
   });
-  // a triangle (of another instance, the same index may come nearer)
-  if (t.prim == h.prim && t.t == h.t) return false;
-  h.t = t.t;
-  h.u = t.u;
-  h.v = t.v;
-  h.prim = t.prim;
-  h.instance = instance;
+  if (t.prim == prior && t.t == h.t) return false;
+  h = Hit{t.t, t.u, t.v, t.prim, instance};
   return true;
 }
 

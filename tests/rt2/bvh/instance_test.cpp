@@ -159,9 +159,16 @@ TEST(Instances, AnyHitAgreesWithTheClosestHitInEveryInstance) {
   }
 }
 
+// Packets walk the instances' trees as packets too; ties between coincident instances (a
+// duplicated node) go to the smaller instance either way.
 TEST(Instances, PacketsThroughInstancesEqualSingleRaysBitForBit) {
   Pair p = instanced_soups(25, 5);
   p.instanced.meshes.push_back(test::random_soup(300, 0.3f, 8));  // and world triangles
+  Material glass;
+  glass.transparency = 0.5f;
+  Instance twin = p.instanced.instances[0];
+  twin.material = p.instanced.add_material("glass", glass);
+  p.instanced.instances.push_back(twin);
   for (Isa isa : test::runnable_isas()) {
     const Accel acc = Accel::build(p.instanced, BvhConfig{}, isa);
     std::vector<Ray> rays;
@@ -178,24 +185,41 @@ TEST(Instances, PacketsThroughInstancesEqualSingleRaysBitForBit) {
           }
         begin.push_back(std::uint32_t(rays.size()));
       }
+    const std::size_t n = rays.size(), packets = begin.size() - 1;
+    std::uint32_t twins[2] = {0, 0};  // where sources 0 and 25 are in the top tree's order
+    for (std::uint32_t k = 0; k < acc.instances.size(); ++k)
+      if (acc.instances[k].source == 0 || acc.instances[k].source == 25)
+        twins[acc.instances[k].source == 25] = k;
     for (bool watertight : {false, true}) {
       const TraceOptions opt{watertight};
-      const std::size_t n = rays.size();
       std::vector<Hit> single(n), packed(n);
       std::vector<std::uint8_t> occ(n), occ_packed(n);
+      std::vector<float> passed(n), passed_packed(n);
+      TraversalCounts counts;
       trace_closest(acc, opt, rays.data(), t_max.data(), n, single.data());
-      trace_closest_packets(acc, opt, rays.data(), t_max.data(), begin.data(), begin.size() - 1,
-                            packed.data());
+      trace_closest_packets(acc, opt, rays.data(), t_max.data(), begin.data(), packets,
+                            packed.data(), &counts);
       trace_occluded(acc, opt, rays.data(), t_max.data(), n, occ.data());
-      trace_occluded_packets(acc, opt, rays.data(), t_max.data(), begin.data(), begin.size() - 1,
-                             occ_packed.data());
-      std::size_t in_instances = 0;
+      trace_occluded_packets(acc, opt, rays.data(), t_max.data(), begin.data(), packets,
+                             occ_packed.data(), &counts);
+      trace_transmittance(acc, p.instanced.materials, opt, rays.data(), t_max.data(), n,
+                          passed.data());
+      trace_transmittance_packets(acc, p.instanced.materials, opt, rays.data(), t_max.data(),
+                                  begin.data(), packets, passed_packed.data());
+      std::size_t in_instances = 0, in_twins = 0;
       for (std::size_t i = 0; i < n; ++i) {
         ASSERT_TRUE(test::bitwise_same(single[i], packed[i])) << isa_name(isa) << " ray " << i;
         ASSERT_EQ(occ[i], occ_packed[i]) << isa_name(isa) << " ray " << i;
+        ASSERT_EQ(passed[i], passed_packed[i]) << isa_name(isa) << " ray " << i;
         in_instances += single[i].instance != kNoInstance;
+        if (single[i].instance == twins[0] || single[i].instance == twins[1]) {
+          EXPECT_EQ(single[i].instance, std::min(twins[0], twins[1])) << "ties: the smaller";
+          ++in_twins;
+        }
       }
       EXPECT_GT(in_instances, n / 20);
+      EXPECT_GT(in_twins, 0u);
+      EXPECT_GT(counts.packet_rays, n / 4);  // the instances' trees walked as packets
     }
   }
 }
