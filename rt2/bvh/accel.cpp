@@ -10,6 +10,7 @@
 
 #include "rt2/base/error.h"
 #include "rt2/base/memory.h"
+#include "rt2/bvh/linear_build.h"
 #include "rt2/scene/scene.h"
 
 namespace rt2 {
@@ -158,41 +159,44 @@ Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
 
 void Accel::place_instances(const std::vector<Instance>& scene_instances, int threads) {
   const std::size_t n = scene_instances.size();
-  std::vector<Aabb> boxes(n);
-  std::vector<TracedInstance> records(n);
-  const int team = threads > 0 ? threads : omp_get_max_threads();
+  // Below some 32k instances a second thread costs more than it saves.
+  const int team = n < 32768 ? 1 : threads > 0 ? threads : omp_get_max_threads();
+  // Scratch kept between frames (named through a reference: inside the parallel loop the
+  // thread_local's name would be each thread's own).
+  thread_local std::vector<Aabb> scratch;
+  std::vector<Aabb>& boxes = scratch;
+  boxes.resize(n);
   with_bvh_width(isa, [&](auto width) {
     constexpr int N = decltype(width)::value;
-#pragma omp parallel for num_threads(team) schedule(static) if (n >= 4096)
-    for (std::size_t i = 0; i < n; ++i) {
-      const Instance& in = scene_instances[i];
-      TracedInstance& r = records[i];
-      const Affine to_object = in.to_world.inverse();
-      r.to_world = columns_of(in.to_world);
-      r.to_object = columns_of(to_object);
-      Affine normals;  // A^-T: the transpose of the inverse's linear part
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) normals.m[std::size_t(a)][std::size_t(b)] =
-            to_object.m[std::size_t(b)][std::size_t(a)];
-      normals.m[0][3] = normals.m[1][3] = normals.m[2][3] = 0.0;
-      r.normals = columns_of(normals);
-      r.mesh = in.mesh;
-      r.material = in.material;
-      r.source = static_cast<std::uint32_t>(i);
-      r.identity = in.to_world.is_identity();
-      r.mirror = in.to_world.determinant() < 0.0;
-      boxes[i] = world_box(mesh_tree<N>(in.mesh).bounds, in.to_world);
-    }
+#pragma omp parallel for num_threads(team) schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      boxes[i] = world_box(mesh_tree<N>(scene_instances[i].mesh).bounds,
+                           scene_instances[i].to_world);
   });
-  // One instance a leaf: entering one costs a transform and a walk of its own.
-  BvhConfig top;
-  top.max_leaf_size = 1;
-  top.sah_block = 1;
-  instance_bvh = n ? build_bvh(boxes, top) : Bvh{};
-  instance_bvh.nodes.shrink_to_fit();
+  // Rebuilt every frame: a linear BVH, one instance a leaf (entering one costs a transform
+  // and a walk of its own).
+  build_linear_bvh(boxes, team, instance_bvh);
   instances.resize(n);
-  for (std::size_t k = 0; k < instance_bvh.order.size(); ++k)
-    instances[k] = records[instance_bvh.order[k]];
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = instance_bvh.order[k];
+    const Instance& in = scene_instances[i];
+    TracedInstance& r = instances[k];
+    const Affine to_object = in.to_world.inverse();
+    r.to_world = columns_of(in.to_world);
+    r.to_object = columns_of(to_object);
+    Affine normals;  // A^-T: the transpose of the inverse's linear part
+    for (std::size_t a = 0; a < 3; ++a) {
+      for (std::size_t b = 0; b < 3; ++b) normals.m[a][b] = to_object.m[b][a];
+      normals.m[a][3] = 0.0;
+    }
+    r.normals = columns_of(normals);
+    r.mesh = in.mesh;
+    r.material = in.material;
+    r.source = i;
+    r.identity = in.to_world.is_identity();
+    r.mirror = in.to_world.determinant() < 0.0;
+  }
 }
 
 std::size_t Accel::bvh_bytes() const {

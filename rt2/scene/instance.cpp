@@ -23,16 +23,21 @@ bool Affine::finite() const {
 }
 
 Affine Affine::inverse() const {
-  const double d = determinant();
+  const auto& a = m;
+  // The adjugate (transposed cofactors) over the determinant, expanded along the first row.
+  const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+  const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+  const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+  const double inv = 1.0 / (a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02);
   Affine r;
-  // A^-1 = adj(A) / det
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
-      r.m[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / d;
-    }
-  for (int i = 0; i < 3; ++i)
-    r.m[i][3] = -(r.m[i][0] * m[0][3] + r.m[i][1] * m[1][3] + r.m[i][2] * m[2][3]);
+  r.m[0] = {c00 * inv, (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * inv,
+            (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * inv, 0.0};
+  r.m[1] = {c01 * inv, (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * inv,
+            (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * inv, 0.0};
+  r.m[2] = {c02 * inv, (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * inv,
+            (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * inv, 0.0};
+  for (std::size_t i = 0; i < 3; ++i)
+    r.m[i][3] = -(r.m[i][0] * a[0][3] + r.m[i][1] * a[1][3] + r.m[i][2] * a[2][3]);
   return r;
 }
 
@@ -103,18 +108,22 @@ bool areas_fit_float(const AreaRange& areas, const Affine& a) {
 }
 
 Aabb world_box(const Aabb& object, const Affine& to_world) {
-  std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (int corner = 0; corner < 8; ++corner) {
-    const auto p = to_world.point({(corner & 1) ? object.hi[0] : object.lo[0],
-                                   (corner & 2) ? object.hi[1] : object.lo[1],
-                                   (corner & 4) ? object.hi[2] : object.lo[2]});
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], p[a]);
-      hi[a] = std::max(hi[a], p[a]);
+  // The box's centre placed, and its half extents through |A| (Arvo 1990): the hull of the
+  // placed corners.
+  double lo[3], hi[3], mag = 0.0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto& row = to_world.m[i];
+    double c = row[3], e = 0.0;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const double centre = 0.5 * (double(object.lo[int(j)]) + object.hi[int(j)]);
+      const double half = 0.5 * (double(object.hi[int(j)]) - object.lo[int(j)]);
+      c += row[j] * centre;
+      e += std::fabs(row[j]) * half;
     }
+    lo[i] = c - e;
+    hi[i] = c + e;
+    mag = std::max({mag, std::fabs(lo[i]), std::fabs(hi[i])});
   }
-  double mag = 0.0;
-  for (int a = 0; a < 3; ++a) mag = std::max({mag, std::fabs(lo[a]), std::fabs(hi[a])});
   const double pad = mag * 0x1p-20;
   Aabb b;
   b.lo = vec4(float(lo[0] - pad), float(lo[1] - pad), float(lo[2] - pad));

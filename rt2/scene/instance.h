@@ -68,8 +68,8 @@ AreaRange area_range(const Mesh& mesh);
 // its Frobenius norm and at least the inverse of its inverse's.
 bool areas_fit_float(const AreaRange& areas, const Affine& a);
 
-// The box in the world of `object` (a box in the mesh's coordinates) under `to_world`: its
-// corners transformed in double, then widened by 2^-20 of its largest magnitude, beyond the
+// The box in the world of `object` (a box in the mesh's coordinates) under `to_world`: the
+// hull of its corners placed, in double, then widened by 2^-20 of its largest magnitude, beyond the
 // rounding of the float transforms the traversal makes (a few ulps), so that a hit found
 // in the mesh's coordinates lies inside it along the world ray.
 Aabb world_box(const Aabb& object, const Affine& to_world);
