@@ -123,6 +123,8 @@ Report::Report(const Options& o, const rt2::Scene& scene, const rt2::CompiledSce
       {"tile", o.schedule.tile},
       {"time_budget_s", o.time_budget},
       {"triangles", accel.tris.size()},
+      {"instances", accel.instances.size()},
+      {"placed_triangles", scene.placed_triangle_count()},
       {"spheres", accel.spheres.size()},
       {"planes", accel.planes.size()},
       {"degenerate_triangles", scene.degenerate_triangles},
@@ -186,10 +188,15 @@ void Report::compare(const rt2::Image& image, const rt2::Image& reference) {
 }
 
 void Report::print_setup() const {
-  std::printf("scene %s: %zu triangles, %zu spheres, %zu planes, %zu lights; features %s; "
+  // "N triangles" or, with instances, "N triangles (M placed by K instances)"
+  std::string placed;
+  if (const auto k = j_["instances"].get<std::size_t>(); k > 0)
+    placed = " (" + std::to_string(j_["placed_triangles"].get<std::size_t>()) + " placed by " +
+             std::to_string(k) + " instances)";
+  std::printf("scene %s: %zu triangles%s, %zu spheres, %zu planes, %zu lights; features %s; "
               "loaded in %.1f ms\n",
               printable(j_["scene"].get<std::string>()).c_str(),
-              j_["triangles"].get<std::size_t>(),
+              j_["triangles"].get<std::size_t>(), placed.c_str(),
               j_["spheres"].get<std::size_t>(), j_["planes"].get<std::size_t>(),
               j_["lights"].get<std::size_t>(), j_["features"].get<std::string>().c_str(),
               j_["scene_load_ms"].get<double>());
