@@ -28,7 +28,7 @@ void LocalJob::render_frames(const Options& o, RenderSetup& setup, Report& repor
     const auto start = Clock::now();
     // The frame's pose of an animated scene, inside the frame's time.
     if (f > 0)
-      if (const auto posed = setup.pose(o, f)) report.add_pose(posed->load_ms, posed->place_ms);
+      if (const auto posed = setup.pose(o, f)) report.add_pose(posed->load_ms, posed->place_ms, posed->placed);
     // The frame's lights: moved and their tree rebuilt, inside the frame's time.
     if (o.animate_lights)
       report.add_light_update(

@@ -284,8 +284,11 @@ void Report::print_summary() const {
                 sm["lights"].get<double>(), sm["shade"].get<double>(), sm["shadow"].get<double>());
   }
   if (j.contains("pose_ms"))
-    std::printf("scene posed per frame: load %.2f ms, trees and lights %.2f ms (medians)\n",
-                j["pose_ms"]["load"].get<double>(), j["pose_ms"]["place"].get<double>());
+    std::printf("scene posed per frame: load %.2f ms, trees and lights %.2f ms (medians); "
+                "trees refit %d, rebuilt after a refit %d, built %d times\n",
+                j["pose_ms"]["load"].get<double>(), j["pose_ms"]["place"].get<double>(),
+                j["pose_trees"]["refit"].get<int>(), j["pose_trees"]["rebuilt"].get<int>(),
+                j["pose_trees"]["built"].get<int>());
   if (j.contains("light_update_ms")) {
     const auto& u = j["light_update_ms"];
     std::printf("light update per frame: %.2f ms (move and bounds %.2f, Morton %.2f, sort "
@@ -380,9 +383,16 @@ nlohmann::json Report::json() const {
                                 {"bytes_sent", r.bytes_sent},
                                 {"serve_ms", r.serve_ms}});
   }
-  if (!poses_.empty())
+  if (!poses_.empty()) {
     j["pose_ms"] = {{"load", median_of(poses_, [](const Pose& p) { return p.load_ms; })},
                     {"place", median_of(poses_, [](const Pose& p) { return p.place_ms; })}};
+    using P = rt2::CompiledScene::Placed;
+    const auto count = [&](P how) {
+      return std::count_if(poses_.begin(), poses_.end(), [&](const Pose& p) { return p.placed == how; });
+    };
+    j["pose_trees"] = {{"built", count(P::built)}, {"refit", count(P::refit)},
+                       {"rebuilt", count(P::rebuilt)}};
+  }
   if (!light_updates_.empty()) {
     using B = rt2::LightBvh::BuildTimes;
     const auto step = [&](double B::*field) {

@@ -25,8 +25,10 @@ class Report {
   // A frame's light update (--animate-lights): moving the lights and rebuilding their tree.
   void add_light_update(const rt2::LightBvh::BuildTimes& t) { light_updates_.push_back(t); }
   // A frame's pose of an animated scene (--time, --fps): loading it at the frame's time and
-  // placing it (trees, lights), in ms.
-  void add_pose(double load_ms, double place_ms) { poses_.push_back({load_ms, place_ms}); }
+  // placing it (trees, lights), in ms, and how the triangle trees were placed.
+  void add_pose(double load_ms, double place_ms, rt2::CompiledScene::Placed placed) {
+    poses_.push_back({load_ms, place_ms, placed});
+  }
   // The processes of an MPI job, rank by rank (rt2cpr_mpi; none for rt2cpr).
   void set_ranks(std::vector<RankStats> ranks) { ranks_ = std::move(ranks); }
   // Image error of the last frame against a reference of the same size (RMSE, PSNR, SSIM).
@@ -45,6 +47,7 @@ class Report {
   std::vector<rt2::LightBvh::BuildTimes> light_updates_;  // per frame, --animate-lights
   struct Pose {
     double load_ms, place_ms;
+    rt2::CompiledScene::Placed placed;
   };
   std::vector<Pose> poses_;  // per frame after the first, an animated scene
   std::vector<RankStats> ranks_;

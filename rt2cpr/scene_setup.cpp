@@ -102,15 +102,18 @@ std::optional<RenderSetup::PoseTimes> RenderSetup::pose(const Options& o, int fr
   at.pose.seconds = frame_seconds(o, frame);
   PoseTimes t;
   const rt2::io::WarningsOff quiet;  // the first load warned
-  scene = timed(t.load_ms, [&] {
+  rt2::Scene next = timed(t.load_ms, [&] {
     rt2::Scene s = load_scene(at);
     set_lights(s, o.lights, o.light_range);
     return s;
   });
   const auto t0 = Clock::now();
-  scene.validate();
-  rt2::recenter_on_camera(scene);
-  compiled.place(scene, o.bvh, o.isa);
+  next.validate();
+  rt2::recenter_on_camera(next);
+  const bool refit = rt2::same_topology(scene, next);
+  scene = std::move(next);
+  compiled.place(scene, o.bvh, o.isa, refit);
+  t.placed = compiled.placed;
   renderer.set_camera(scene.camera);
   t.place_ms = ms_since(t0);
   return t;

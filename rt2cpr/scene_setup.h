@@ -61,6 +61,7 @@ struct RenderSetup {
   // nothing, doing nothing, for a scene that does not move. Throws rt2::Error.
   struct PoseTimes {
     double load_ms = 0.0, place_ms = 0.0;
+    rt2::CompiledScene::Placed placed = rt2::CompiledScene::Placed::built;
   };
   std::optional<PoseTimes> pose(const Options& o, int frame);
 

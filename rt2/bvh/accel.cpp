@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <span>
+#include <utility>
 #include <string>
 
 #include <omp.h>
@@ -33,63 +35,92 @@ struct TriangleColumns {
   bool normals = false, texcoords = false;
 };
 
-// A tree over `meshes`' triangles: built, the triangles appended to acc's arrays in its leaf
-// order, then collapsed to width N over acc.blocks (prims indexing acc.tris).
+// Triangle k of `meshes` (face k - first[j] of mesh j, the last mesh with first[j] <= k):
+// found by a search over the meshes, not read from a table of every triangle's mesh and
+// face (16 bytes a triangle of fresh memory, 23 MB for 1.4M triangles).
+class MeshFaces {
+ public:
+  explicit MeshFaces(std::span<const Mesh> meshes) : meshes_(meshes) {
+    first_.reserve(meshes.size());
+    for (const Mesh& m : meshes) {
+      first_.push_back(total_);
+      total_ += static_cast<std::uint32_t>(m.faces.size());
+    }
+  }
+  std::uint32_t total() const { return total_; }
+  std::pair<const Mesh*, std::uint32_t> operator()(std::uint32_t k) const {
+    const std::size_t j =
+        std::size_t(std::upper_bound(first_.begin(), first_.end(), k) - first_.begin()) - 1;
+    return {&meshes_[j], k - first_[j]};
+  }
+
+ private:
+  std::span<const Mesh> meshes_;
+  std::vector<std::uint32_t> first_;
+  std::uint32_t total_ = 0;
+};
+
+// Writes triangle `index` of acc's arrays: face `face` of `m`. Returns whether its vertices
+// differ from those it held.
+bool put_triangle(const Mesh& m, std::uint32_t face, TriangleColumns columns, std::size_t index,
+                  Accel& acc) {
+  const auto& f = m.faces[face];
+  const Triangle tri = Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
+  Triangle& old = acc.tris[index];
+  const bool moved = std::memcmp(&old, &tri, sizeof(Triangle)) != 0;  // bits: -0 is not +0
+  old = tri;
+  acc.tri_materials[index] = m.face_materials[face];
+  if (columns.texcoords) {
+    if (m.texcoords.empty())
+      acc.tri_texcoords[index] = {};
+    else
+      acc.tri_texcoords[index] = {m.texcoords[f[0]], m.texcoords[f[1]], m.texcoords[f[2]]};
+  }
+  if (columns.normals) {
+    if (m.normals.empty()) {
+      const vec4 nf = normalize(tri.n);
+      acc.tri_normals[index] = {nf, nf, nf};
+    } else {
+      acc.tri_normals[index] = {m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]};
+    }
+  }
+  return moved;
+}
+
+// The cost a refit is weighed by: expected nodes entered and blocks tested (wide_sah).
+template <int N>
+double tree_cost(const WideBvh<N>& bvh, const TriangleBlocks& blocks) {
+  const WideSah sah = wide_sah(bvh, blocks.data());
+  return sah.nodes + sah.leaves;
+}
+
+// A tree over `meshes`' triangles: built, the triangles appended to acc's arrays in the
+// meshes' order, then collapsed to width N over acc.blocks (prims indexing acc.tris). Its
+// record is appended to acc.trees.
 template <int N>
 WideBvh<N> build_triangles(std::span<const Mesh> meshes, const BvhConfig& config,
                            TriangleColumns columns, Accel& acc, BvhStats* stats) {
-  // Triangle i is face i - first[j] of mesh j, the last mesh with first[j] <= i: found by a
-  // search over the meshes, not read from a table of every triangle's mesh and face (16
-  // bytes a triangle of fresh memory, 23 MB for 1.4M triangles).
-  std::vector<std::uint32_t> first;
-  first.reserve(meshes.size());
-  std::uint32_t total = 0;
-  for (const Mesh& m : meshes) {
-    first.push_back(total);
-    total += static_cast<std::uint32_t>(m.faces.size());
-  }
-  const auto mesh_of = [&](std::uint32_t i) {
-    return std::size_t(std::upper_bound(first.begin(), first.end(), i) - first.begin()) - 1;
-  };
+  const MeshFaces faces(meshes);
   // Each box made where the builder stores it. The binary tree is read once, by the
   // collapse below, and not kept.
   const Bvh bvh = build_bvh(
-      total,
-      [&](std::uint32_t i) {
-        const std::size_t j = mesh_of(i);
-        const Mesh& m = meshes[j];
+      faces.total(),
+      [&](std::uint32_t k) {
+        const auto [m, face] = faces(k);
         Aabb b;
-        for (std::uint32_t v : m.faces[i - first[j]]) b.grow(m.positions[v]);
+        for (std::uint32_t v : m->faces[face]) b.grow(m->positions[v]);
         return b;
       },
       config);
   if (stats) *stats = bvh.stats;
-  const std::size_t offset = acc.tris.size();
-  acc.tris.reserve(offset + bvh.order.size());
-  acc.tri_materials.reserve(offset + bvh.order.size());
-  if (columns.normals) acc.tri_normals.reserve(offset + bvh.order.size());
-  if (columns.texcoords) acc.tri_texcoords.reserve(offset + bvh.order.size());
-  for (std::uint32_t k : bvh.order) {
-    const std::size_t j = mesh_of(k);
-    const Mesh& m = meshes[j];
-    const std::uint32_t face = k - first[j];
-    const auto& f = m.faces[face];
-    const Triangle tri = Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
-    acc.tris.push_back(tri);
-    acc.tri_materials.push_back(m.face_materials[face]);
-    if (columns.texcoords) {
-      if (m.texcoords.empty())
-        acc.tri_texcoords.push_back({});
-      else
-        acc.tri_texcoords.push_back({m.texcoords[f[0]], m.texcoords[f[1]], m.texcoords[f[2]]});
-    }
-    if (!columns.normals) continue;
-    if (m.normals.empty()) {
-      const vec4 nf = normalize(tri.n);
-      acc.tri_normals.push_back({nf, nf, nf});
-    } else {
-      acc.tri_normals.push_back({m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]});
-    }
+  const std::size_t offset = acc.tris.size(), end = offset + faces.total();
+  acc.tris.resize(end);
+  acc.tri_materials.resize(end);
+  if (columns.normals) acc.tri_normals.resize(end);
+  if (columns.texcoords) acc.tri_texcoords.resize(end);
+  for (std::uint32_t k = 0; k < faces.total(); ++k) {
+    const auto [m, face] = faces(k);
+    put_triangle(*m, face, columns, offset + k, acc);
   }
   const std::size_t first_block = acc.blocks.size();
   WideBvh<N> tree = collapse_bvh<N>(bvh, std::span<const Triangle>(acc.tris).subspan(offset),
@@ -99,6 +130,8 @@ WideBvh<N> build_triangles(std::span<const Mesh> meshes, const BvhConfig& config
       for (std::uint32_t& p : acc.blocks[b].prim)
         if ((p & ~TriangleBlock::kLastBlock) != TriangleBlock::kNoPrim)
           p += static_cast<std::uint32_t>(offset);
+  acc.trees.push_back({static_cast<std::uint32_t>(offset), faces.total(),
+                       tree_cost(tree, acc.blocks)});
   return tree;
 }
 
@@ -155,6 +188,42 @@ Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
   acc.plane_materials = scene.plane_materials;
   acc.place_instances(scene.instances);
   return acc;
+}
+
+double Accel::refit(const Scene& scene, const BvhConfig& config, int threads) {
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  const TriangleColumns columns{!tri_normals.empty(), !tri_texcoords.empty()};
+  double growth = 1.0;
+  with_bvh_width(isa, [&](auto width) {
+    constexpr int N = decltype(width)::value;
+    for (std::size_t t = 0; t < trees.size(); ++t) {
+      const std::span<const Mesh> meshes =
+          t == 0 ? std::span<const Mesh>(scene.meshes)
+                 : std::span<const Mesh>(&scene.instanced_meshes[t - 1], 1);
+      const MeshFaces faces(meshes);
+      const TreeRecord& record = trees[t];
+      if (faces.total() != record.count)
+        throw Error("refit: the scene's triangles are not those the trees were built over");
+      bool moved = false;
+#pragma omp parallel for num_threads(team) schedule(static) reduction(|| : moved)
+      for (std::uint32_t k = 0; k < faces.total(); ++k) {
+        const auto [m, face] = faces(k);
+        moved = put_triangle(*m, face, columns, record.first + k, *this) || moved;
+      }
+      if (!moved) continue;
+      WideBvh<N>& tree = t == 0 ? wide<N>() : mesh_trees_of<N>(mesh_trees)[t - 1];
+      refit_bvh<N>(tree, tris, blocks, team);
+      if (record.built_cost > 0.0)
+        growth = std::max(growth, tree_cost(tree, blocks) / record.built_cost);
+    }
+  });
+  spheres.clear();
+  sphere_materials.clear();
+  build_spheres(scene, config, *this);
+  planes = scene.planes;
+  plane_materials = scene.plane_materials;
+  place_instances(scene.instances, threads);
+  return growth;
 }
 
 void Accel::place_instances(const std::vector<Instance>& scene_instances, int threads) {

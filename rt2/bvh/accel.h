@@ -1,8 +1,10 @@
 // rt2/bvh/accel.h — a scene's geometry compiled for tracing: a wide BVH over the triangles, a
 // binary BVH over the spheres, and the unbounded planes.
 //
-// Primitives are kept per kind in contiguous arrays (no virtual call per test), each in the
-// leaf order of its tree. Triangles: the binary SAH tree (bvh/build.h) collapsed into
+// Primitives are kept per kind in contiguous arrays (no virtual call per test): triangles
+// in their meshes' face order, so that a triangle's index, which decides ties at equal t, is
+// the same whatever tree is built or refit over them; spheres in the leaf order of their
+// tree. Triangles: the binary SAH tree (bvh/build.h) collapsed into
 // nodes of 4, 8 or 16 children, the width of the instruction set chosen for tracing
 // (rt2/base/isa.h), whose leaves are TriangleBlocks of four triangles tested together; `tris`
 // keeps each triangle whole for shading. Spheres (usually few) keep the binary tree. The
@@ -82,6 +84,15 @@ struct Accel {
   Bvh instance_bvh;
   std::vector<TracedInstance> instances;
 
+  // Per triangle tree (the world's, then each instanced mesh's in Scene::instanced_meshes
+  // order): its triangles, tris[first, first + count) in their meshes' face order, and its
+  // cost as built (wide_sah: nodes + leaves), against which refit weighs the refit tree's.
+  struct TreeRecord {
+    std::uint32_t first = 0, count = 0;
+    double built_cost = 0.0;
+  };
+  std::vector<TreeRecord> trees;
+
   // Statistics of the triangle tree: the binary build (time, nodes, depth) and the wide
   // tree's node and leaf counts.
   BvhStats stats;
@@ -89,6 +100,15 @@ struct Accel {
 
   // Builds every tree with `config`, the triangle trees `bvh_width(isa)` wide.
   static Accel build(const Scene& scene, const BvhConfig& config, Isa isa = best_isa());
+
+  // Refits the trees to `scene`, the scene they were built from with its meshes' vertices,
+  // normals and texture coordinates moved (Scene::same_topology): each tree whose
+  // triangles moved keeps its shape and takes new boxes (refit_bvh, wide_bvh.h); the spheres'
+  // tree is rebuilt with `config`, the planes copied and the instances placed, with
+  // `threads` OpenMP threads (<= 0: all). Returns the largest growth of a refit tree's cost
+  // over its cost as built (1 when none grew): the caller rebuilds when it is too large.
+  // Throws rt2::Error when a tree's triangle count differs from the scene's.
+  double refit(const Scene& scene, const BvhConfig& config, int threads = 0);
 
   // Rebuilds the top level for `instances` (the scene's, moved; the same meshes): their
   // records and the tree over their boxes, with `threads` OpenMP threads (<= 0: all).

@@ -84,11 +84,7 @@ class Builder {
     out_.nodes.emplace_back();
     BvhNode& node = out_.nodes[index];
     for (int a = 0; a < 3; ++a) {
-      // Padded by 4 ulps of the coordinates: the triangle test rounds too, and may accept a
-      // ray that passes a fraction of an ulp outside a triangle (a grazing ray along a box
-      // edge); the box around it must not reject what the test inside would accept.
-      const float pad = std::max(std::fabs(bounds.lo[a]), std::fabs(bounds.hi[a])) * 0x1p-21f +
-                        std::numeric_limits<float>::min();
+      const float pad = box_pad(bounds.lo[a], bounds.hi[a]);
       node.lo[a] = bounds.lo[a] - pad;
       node.hi[a] = bounds.hi[a] + pad;
     }

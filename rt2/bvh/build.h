@@ -4,8 +4,11 @@
 // nothing of triangles or spheres, and nothing of how the tree will be traversed.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "rt2/geometry/aabb.h"
@@ -22,6 +25,14 @@ namespace rt2 {
 // a caller that keeps the tree shrinks it (`nodes.shrink_to_fit()`), one that only reads it
 // once (collapse_bvh) saves the copy.
 Bvh build_bvh(const std::vector<Aabb>& boxes, const BvhConfig& config);
+
+// What a tree node's box adds on each side of the span [lo, hi] of its primitives along an
+// axis: 4 ulps of the coordinates. The triangle test rounds too, and may accept a ray that
+// passes a fraction of an ulp outside a triangle (a grazing ray along a box edge); the box
+// around it must not reject what the test inside would accept.
+inline float box_pad(float lo, float hi) {
+  return std::max(std::fabs(lo), std::fabs(hi)) * 0x1p-21f + std::numeric_limits<float>::min();
+}
 
 // The same over `count` primitives, primitive i having the box box_of(i): without a vector
 // of boxes, for a large mesh 32 bytes per triangle that need not be written and read again.

@@ -4,11 +4,119 @@
 #include <limits>
 #include <type_traits>
 
+#include <omp.h>
+
+#include "rt2/bvh/build.h"
 #include "rt2/bvh/wide_bvh.h"
 
 namespace rt2 {
 
 namespace {
+
+// WideNode::octant_order for the n children in slots [0, n). Each child's position is
+// its rank, counted without a branch (a sort of eight random keys mispredicts about every
+// other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
+// opposite one). A node of two children keeps the identity order: the walk orders two
+// children by their distances (rt2/kernel/wide_traverse.h).
+template <int N>
+void set_octant_orders(WideNode<N>& w, int n) {
+  for (int j = 0; j < N; ++j)  // j in each field
+    w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
+  if (n <= 2) return;
+  for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
+  float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < n; ++i)
+      centre[a][i] = w.bounds[2 * a][i] * 0.5f + w.bounds[2 * a + 1][i] * 0.5f;
+  for (int o = 0; o < 4; ++o) {
+    float key[N];  // along the diagonal: farther is larger
+    for (int i = 0; i < n; ++i)
+      key[i] = ((o & 1 ? -centre[0][i] : centre[0][i]) + (o & 2 ? -centre[1][i] : centre[1][i])) +
+               (o & 4 ? -centre[2][i] : centre[2][i]);
+    std::uint32_t slot_at[N];
+    for (int j = 0; j < N; ++j) slot_at[j] = std::uint32_t(j);  // the unused slots stay last
+    for (int i = 0; i < n; ++i) {
+      int rank = 0;  // the keys before key i: larger, or equal in a lower slot
+      for (int j = 0; j < n; ++j) rank += (key[j] > key[i]) | ((key[j] == key[i]) & (j < i));
+      slot_at[rank] = std::uint32_t(i);
+    }
+    for (int j = 0; j < N; ++j) {
+      const std::uint32_t backward = j < n ? slot_at[n - 1 - j] : slot_at[j];
+      w.octant_order[j] |=
+          slot_at[j] << (kOrderBits<N> * o) | backward << (kOrderBits<N> * (7 - o));
+    }
+  }
+}
+
+// Refitting: the boxes of a tree whose triangles moved, its shape kept. Each box is what the
+// build gives the same triangles in the same node: the union of their vertices, padded by
+// box_pad. The children's orders per octant are kept: they steer which child a walk enters
+// first, never what it finds, and remaking them would cost a fifth of the refit.
+template <int N>
+class Refitter {
+ public:
+  Refitter(WideBvh<N>& bvh, std::span<const Triangle> tris, TriangleBlocks& blocks)
+      : nodes_(bvh.nodes.data()), tris_(tris), blocks_(blocks.data()) {}
+
+  // The unpadded box of the triangles under `ref` (a node or a leaf), its nodes refit and
+  // its blocks rewritten. Below depth `split_depth` the children are refit as OpenMP tasks.
+  Aabb refit(std::uint32_t ref, int split_depth) {
+    if (ref & kLeaf) return leaf(ref & ~kLeaf);
+    WideNode<N>& w = nodes_[ref];
+    Aabb child[N];
+    const int n = used_slots(w);
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t c = w.child[i];
+      if (split_depth > 0) {
+#pragma omp task shared(child) firstprivate(c, i, split_depth) if (!(c & kLeaf))
+        child[i] = refit(c, split_depth - 1);
+      } else {
+        child[i] = refit(c, 0);
+      }
+    }
+    if (split_depth > 0) {
+#pragma omp taskwait
+    }
+    Aabb box;
+    for (int i = 0; i < n; ++i) {
+      box.grow(child[i]);
+      for (int a = 0; a < 3; ++a) {
+        const float pad = box_pad(child[i].lo[a], child[i].hi[a]);
+        w.bounds[2 * a][i] = child[i].lo[a] - pad;
+        w.bounds[2 * a + 1][i] = child[i].hi[a] + pad;
+      }
+    }
+    return box;
+  }
+
+ private:
+  // The used slots are [0, n): the build fills them first; an unused one has an empty box.
+  static int used_slots(const WideNode<N>& w) {
+    int n = 0;
+    while (n < N && w.bounds[0][n] <= w.bounds[1][n]) ++n;
+    return n;
+  }
+
+  Aabb leaf(std::uint32_t first) {
+    Aabb box;
+    for (TriangleBlock* b = blocks_ + first;; ++b) {
+      for (int l = 0; l < TriangleBlock::kLanes; ++l) {
+        const std::uint32_t p = b->prim_of(l);
+        if (p == TriangleBlock::kNoPrim) continue;
+        const Triangle& t = tris_[p];
+        b->set(l, t, p);
+        box.grow(t.v0);
+        box.grow(t.v1);
+        box.grow(t.v2);
+      }
+      if (b->last()) return box;
+    }
+  }
+
+  WideNode<N>* nodes_;
+  std::span<const Triangle> tris_;
+  TriangleBlock* blocks_;
+};
 
 template <int N>
 class Collapser {
@@ -57,44 +165,10 @@ class Collapser {
         out_.nodes.emplace_back();
       }
     }
-    set_octant_orders(w, n);
+    set_octant_orders<N>(w, n);
     out_.nodes[index] = w;
     for (int i = 0; i < n; ++i)
       if (!(w.child[i] & kLeaf)) fill(w.child[i], kids[i], depth + 1);
-  }
-
-  // WideNode::octant_order for the n children in slots [0, n). Each child's position is
-  // its rank, counted without a branch (a sort of eight random keys mispredicts about every
-  // other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
-  // opposite one). A node of two children keeps the identity order: the walk orders two
-  // children by their distances (rt2/kernel/wide_traverse.h).
-  static void set_octant_orders(WideNode<N>& w, int n) {
-    for (int j = 0; j < N; ++j)  // j in each field
-      w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
-    if (n <= 2) return;
-    for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
-    float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < n; ++i)
-        centre[a][i] = w.bounds[2 * a][i] * 0.5f + w.bounds[2 * a + 1][i] * 0.5f;
-    for (int o = 0; o < 4; ++o) {
-      float key[N];  // along the diagonal: farther is larger
-      for (int i = 0; i < n; ++i)
-        key[i] = ((o & 1 ? -centre[0][i] : centre[0][i]) + (o & 2 ? -centre[1][i] : centre[1][i])) +
-                 (o & 4 ? -centre[2][i] : centre[2][i]);
-      std::uint32_t slot_at[N];
-      for (int j = 0; j < N; ++j) slot_at[j] = std::uint32_t(j);  // the unused slots stay last
-      for (int i = 0; i < n; ++i) {
-        int rank = 0;  // the keys before key i: larger, or equal in a lower slot
-        for (int j = 0; j < n; ++j) rank += (key[j] > key[i]) | ((key[j] == key[i]) & (j < i));
-        slot_at[rank] = std::uint32_t(i);
-      }
-      for (int j = 0; j < N; ++j) {
-        const std::uint32_t backward = j < n ? slot_at[n - 1 - j] : slot_at[j];
-        w.octant_order[j] |=
-            slot_at[j] << (kOrderBits<N> * o) | backward << (kOrderBits<N> * (7 - o));
-      }
-    }
   }
 
   // Which binary nodes become wide nodes, by dynamic programming over the binary tree (Ylitie
@@ -224,7 +298,7 @@ class Collapser {
     for (std::uint32_t i = 0; i < node.count; i += TriangleBlock::kLanes) {
       TriangleBlock block = TriangleBlock::empty();
       for (std::uint32_t l = 0; l < TriangleBlock::kLanes && i + l < node.count; ++l) {
-        const std::uint32_t t = node.offset + i + l;
+        const std::uint32_t t = bvh_.order[node.offset + i + l];
         block.set(static_cast<int>(l), tris_[t], t);
       }
       blocks_.push_back(block);
@@ -262,11 +336,35 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
   return out;
 }
 
+template <int N>
+void refit_bvh(WideBvh<N>& bvh, std::span<const Triangle> triangles, TriangleBlocks& blocks,
+               int threads) {
+  if (bvh.root == kNoChild) return;
+  Refitter<N> r(bvh, triangles, blocks);
+  Aabb box;
+  if (threads == 1 || (bvh.root & kLeaf)) {
+    box = r.refit(bvh.root, 0);
+  } else {
+#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
+#pragma omp single
+    box = r.refit(bvh.root, 2);  // N^2 tasks: enough to balance a few threads
+  }
+  for (int a = 0; a < 3; ++a) {
+    const float pad = box_pad(box.lo[a], box.hi[a]);
+    bvh.bounds.lo[a] = box.lo[a] - pad;
+    bvh.bounds.hi[a] = box.hi[a] + pad;
+  }
+}
+
 template WideBvh<4> collapse_bvh<4>(const Bvh&, std::span<const Triangle>,
                                     TriangleBlocks&);
 template WideBvh<8> collapse_bvh<8>(const Bvh&, std::span<const Triangle>,
                                     TriangleBlocks&);
 template WideBvh<16> collapse_bvh<16>(const Bvh&, std::span<const Triangle>,
                                       TriangleBlocks&);
+
+template void refit_bvh<4>(WideBvh<4>&, std::span<const Triangle>, TriangleBlocks&, int);
+template void refit_bvh<8>(WideBvh<8>&, std::span<const Triangle>, TriangleBlocks&, int);
+template void refit_bvh<16>(WideBvh<16>&, std::span<const Triangle>, TriangleBlocks&, int);
 
 }  // namespace rt2

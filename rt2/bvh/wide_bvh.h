@@ -108,13 +108,22 @@ struct WideSah {
 template <int N>
 WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks);
 
-// Collapses the binary tree `bvh` over triangles into a wide one. Leaf i's triangles are
-// triangles[bvh.order[first .. first + count)] in the binary tree; here they must already be
-// stored in leaf order, so that the binary leaf [first, first + count) holds
-// triangles[first .. first + count). Appends the leaves' blocks to `blocks` (prim = index
-// into `triangles`).
+// Collapses the binary tree `bvh` over triangles into a wide one: the binary leaf
+// [first, first + count) holds triangles[bvh.order[first .. first + count)]. Appends the
+// leaves' blocks to `blocks` (prim = index into `triangles`).
 template <int N>
 WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
                         TriangleBlocks& blocks);
+
+// Refits `bvh`, whose blocks are in `blocks`, to `triangles` moved (the same triangles, by
+// the index the blocks hold, at new positions): the blocks take their triangles' vertices and
+// normals again and every box is remade bottom up as the build makes it from the same
+// triangles in the same nodes (so a tree refit to unmoved triangles is the tree built). The
+// shape and the children's octant orders are kept: boxes that grew apart overlap, and the
+// tree's SAH cost (wide_sah) grows.
+// With `threads` OpenMP threads (<= 0: all).
+template <int N>
+void refit_bvh(WideBvh<N>& bvh, std::span<const Triangle> triangles, TriangleBlocks& blocks,
+               int threads);
 
 }  // namespace rt2

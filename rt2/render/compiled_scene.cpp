@@ -85,10 +85,19 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
   return c;
 }
 
-void CompiledScene::place(const Scene& scene, const BvhConfig& config, Isa isa) {
+void CompiledScene::place(const Scene& scene, const BvhConfig& config, Isa isa, bool refit) {
   scene.validate();
   const auto t = std::chrono::steady_clock::now();
-  accel = Accel::build(scene, config, isa);
+  placed = Placed::built;
+  cost_growth = 1.0;
+  if (refit && accel.isa == isa && !accel.trees.empty()) {
+    cost_growth = accel.refit(scene, config);
+    placed = Placed::refit;
+  }
+  if (placed == Placed::built || cost_growth > kRebuildCostGrowth) {
+    if (placed == Placed::refit) placed = Placed::rebuilt;
+    accel = Accel::build(scene, config, isa);
+  }
   times.accel_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
   lights = scene.lights;

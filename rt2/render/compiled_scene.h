@@ -59,6 +59,11 @@ struct CompiledScene {
   struct Times {
     double accel_ms = 0, brdf_table_ms = 0, textures_ms = 0, environment_ms = 0;
   } times;
+  // How the last place made the trees: built, refit, or refit then rebuilt (its cost grew
+  // past kRebuildCostGrowth), with the refit's cost growth.
+  enum class Placed { built, refit, rebuilt };
+  Placed placed = Placed::built;
+  double cost_growth = 1.0;
 
   // Validates `scene` (Scene::validate) and compiles it: the trees with `config`, the
   // triangles' `bvh_width(isa)` wide; opens its textures and loads and prefilters its
@@ -71,8 +76,18 @@ struct CompiledScene {
   // animated glTF): the trees, built with `config` for `isa` as compile builds them, the
   // lights and their tree, the origin, the offset scale and the features, each as compile
   // makes it from `scene`. Materials, textures and the environment are kept (a pose does not
-  // change them). Never call it while a frame renders.
-  void place(const Scene& scene, const BvhConfig& config, Isa isa);
+  // change them). With `refit` (the caller's promise that `scene` has the topology of the
+  // scene placed last, same_topology), the triangle trees are refit (Accel::refit) and
+  // rebuilt only when a refit tree's cost has grown past kRebuildCostGrowth; the images are
+  // the same either way (a triangle's index does not depend on its tree). Never call it
+  // while a frame renders.
+  void place(const Scene& scene, const BvhConfig& config, Isa isa, bool refit = false);
+
+  // The growth of a refit tree's SAH cost (Accel::refit) past which place rebuilds it. A
+  // refit tree traces incoherent rays about as much slower as its cost grew (bench_refit on
+  // the bunny and the 1.4M-triangle elephant, docs/performance.md): a quarter slower is
+  // where a frame's tracing loses more than a refit saves over a build.
+  static constexpr double kRebuildCostGrowth = 1.25;
 
   // Moves every light to where its path is at `seconds` (light_path.h) and rebuilds
   // the light tree with `threads` OpenMP threads (<= 0: all). Lights are the one part of a

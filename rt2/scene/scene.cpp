@@ -36,6 +36,24 @@ std::size_t Scene::placed_triangle_count() const {
   return n;
 }
 
+namespace {
+
+bool same_faces(const std::vector<Mesh>& a, const std::vector<Mesh>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].faces != b[i].faces || a[i].face_materials != b[i].face_materials ||
+        a[i].normals.empty() != b[i].normals.empty() ||
+        a[i].texcoords.empty() != b[i].texcoords.empty())
+      return false;
+  return true;
+}
+
+}  // namespace
+
+bool same_topology(const Scene& a, const Scene& b) {
+  return same_faces(a.meshes, b.meshes) && same_faces(a.instanced_meshes, b.instanced_meshes);
+}
+
 Aabb Scene::bounds() const {
   Aabb b;
   for (const Sphere& s : spheres) {

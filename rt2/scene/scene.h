@@ -108,6 +108,12 @@ struct Scene {
   void validate() const;
 };
 
+// Whether `b`'s triangles are `a`'s, perhaps moved: the same meshes and instanced meshes
+// with the same faces, face materials, and normals and texture coordinates present or
+// absent alike (their positions, normals and coordinates may differ). Then trees built over
+// `a` can be refit to `b` (Accel::refit).
+bool same_topology(const Scene& a, const Scene& b);
+
 // Moves the whole scene by -camera position, so that the camera sits at the origin.
 // Rendering is invariant under translation, but float precision is not: a scene a
 // million units from the origin has an ulp of 0.0625 there, which swallows small objects

@@ -126,7 +126,7 @@ void Job::frames(const Options& o, RenderSetup& setup, Report& report, rt2::Imag
     // The frame's pose of an animated scene, by every rank alike, inside the frame's time.
     std::optional<RenderSetup::PoseTimes> posed;
     if (f > 0) all_or_none([&] { posed = setup.pose(o, f); });
-    if (posed && leader()) report.add_pose(posed->load_ms, posed->place_ms);
+    if (posed && leader()) report.add_pose(posed->load_ms, posed->place_ms, posed->placed);
     // The frame's lights, moved by every rank alike, inside the frame's time.
     if (o.animate_lights) {
       const rt2::LightBvh::BuildTimes t = setup.compiled.move_lights(frame_seconds(o, f), threads);

@@ -88,7 +88,7 @@ void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
     if (compiled_ && !at_camera && !lights_changed) {
       scene.validate();
       rt2::recenter_on_camera(scene);
-      compiled_->place(scene, options_.bvh, options_.isa);
+      compiled_->place(scene, options_.bvh, options_.isa, rt2::same_topology(base_, scene));
     } else {
       compiled_ = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));
     }

@@ -1,7 +1,7 @@
 // rt2cpr with an animated glTF (tests/rt2/io/animated_gltf.h): every frame of a sequence
-// equals, bit for bit, a fresh render at that frame's time, whatever the thread count;
-// `--output` with '#' writes every frame under its number; the options of animation are
-// checked. Each test names the property it checks.
+// (its trees refit) equals, bit for bit, a fresh render at that frame's time, whatever the
+// thread count; `--output` with '#' writes every frame under its number; the options of
+// animation are checked. Each test names the property it checks.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -36,10 +36,15 @@ class AnimatedFrames : public Cli {
   }
 };
 
-TEST_F(AnimatedFrames, EveryFrameEqualsAFreshRenderAtItsTimeAtAnyThreadCount) {
+TEST_F(AnimatedFrames, EveryFrameOfRefitTreesEqualsAFreshRenderAtItsTimeAtAnyThreadCount) {
   const Outcome seq = run(scene() + " " + kSmall + " --frames 4 --fps 3 --time 0.2 --threads 2 " +
-                          "--output " + path("seq_##.exr"));
+                          "--stats " + path("s.json") + " --output " + path("seq_##.exr"));
   ASSERT_EQ(seq.status, 0) << seq.err;
+  // The meshes keep their triangles from pose to pose: every later frame refits the trees
+  // (and rebuilds them only if they degraded), none builds them afresh.
+  const nlohmann::json j = nlohmann::json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["pose_trees"]["refit"].get<int>() + j["pose_trees"]["rebuilt"].get<int>(), 3) << j;
+  EXPECT_EQ(j["pose_trees"]["built"].get<int>(), 0) << j;
   for (int f = 0; f < 4; ++f) {
     const std::string one = path("one_" + std::to_string(f) + ".exr");
     const Outcome r = run(scene() + " " + kSmall + " --threads 1 --time " + exact(0.2 + f / 3.0) +

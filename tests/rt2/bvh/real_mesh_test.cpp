@@ -103,8 +103,8 @@ TEST_P(RealMesh, EveryIsaTriangleTestPrefetchAndCountingFindsThePreviousKernelsH
       for (std::size_t i = 0; i < rays.size(); ++i) {
         const Hit& e = expected[watertight][i];
         found += e.found();
-        // Both trees come from the same scene: the same triangle order (leaf order of the
-        // default build), so the same index means the same triangle.
+        // Both trees come from the same scene: triangles in its face order, so the same
+        // index means the same triangle.
         differ += !(hits[i].t == (e.found() ? e.t : kInfinity) && hits[i].prim == e.prim &&
                     (!e.found() || (hits[i].u == e.u && hits[i].v == e.v)));
         occlusion_differs += occluded[i] != (e.found() ? 1 : 0);
