@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 
+#include "rt2/io/gltf_scene.h"
 #include "rt2/io/text.h"
 
 namespace rt2::io {
@@ -408,6 +409,16 @@ void check_node(const Schema& s, const json& n, const std::string& at) {
               at + ".extensions.KHR_lights_punctual.light");
 }
 
+void check_skin(const Schema& s, const json& k, const std::string& at) {
+  const auto index = [&](const json& v, const std::string& p) { s.integer(v, p); };
+  s.optional(k, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
+  s.optional(k, "inverseBindMatrices", at, index);
+  s.optional(k, "skeleton", at, index);  // not used: the joints' world matrices place a skin
+  const json& joints = s.required(k, "joints", at);
+  s.array(joints, at + ".joints", 1, kMaxGltfJoints);
+  s.indices(joints, at + ".joints");
+}
+
 void check_animation(const Schema& s, const json& a, const std::string& at) {
   const auto index = [&](const json& v, const std::string& p) { s.integer(v, p); };
   s.optional(a, "name", at, [&](const json& v, const std::string& p) { s.string(v, p); });
@@ -589,7 +600,8 @@ void check_schema(const Schema& s, const json& root, bool glb, std::vector<std::
                 [&](const json& m, const std::string& at) { check_material(s, m, at); });
   s.each_object(root, "cameras", "",
                 [&](const json& c, const std::string& at) { check_camera(s, c, at); });
-  s.each_object(root, "skins", "", [](const json&, const std::string&) {});
+  s.each_object(root, "skins", "",
+                [&](const json& k, const std::string& at) { check_skin(s, k, at); });
   s.each_object(root, "animations", "",
                 [&](const json& a, const std::string& at) { check_animation(s, a, at); });
   if (const json* l = s.extension(root, "KHR_lights_punctual", ""))

@@ -310,6 +310,7 @@ int component_count(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT4: return 16;
     default: return 0;
   }
 }
@@ -412,9 +413,12 @@ class GltfReader {
   std::vector<double> morph_weights(int node, const std::string& at);
   Animation animation(int index);
   void pose_nodes();
+  void read_skins();
+  Mat4 node_world(int node, const std::string& at);
+  const std::vector<Mat4>& joint_matrices(int skin);
   void walk(int root, const Mat4& parent);
   void add_primitive(int mesh_index, int prim_index, const Mat4& world,
-                     const std::vector<double>& weights, Mesh* into = nullptr);
+                     const std::vector<double>& weights, Mesh* into = nullptr, int skin = -1);
   void place_meshes();
   void set_camera(int node, int camera_index, const Mat4& world);
   void add_light(int node, const tinygltf::Value& ext, const Mat4& world);
@@ -438,6 +442,18 @@ class GltfReader {
   std::size_t key_values_ = 0;  // keyframe numbers read, against kMaxGltfKeyValues
   std::size_t morph_reads_ = 0;  // vertices of targets read, against kMaxGltfMorphReads
   std::vector<int> morph_counts_;  // per mesh, its morph target count once known (else -1)
+  // Per skin: its joints (nodes, checked), inverse bind matrices (checked affine) and, once a
+  // skinned mesh needs them, its joint matrices as posed (joint world · inverse bind).
+  struct Skin {
+    std::vector<int> joints;
+    std::vector<Mat4> inverse_bind, matrices;
+  };
+  std::vector<Skin> skins_;
+  // The node tree read upwards, for joints' world matrices (node_world): per node its parent
+  // (-1 none, -2 several), and its world matrix as posed once known.
+  std::vector<int> parent_;
+  std::vector<Mat4> world_;
+  std::vector<char> world_known_;
   std::size_t visits_ = 0, primitives_ = 0, vertices_ = 0, triangles_ = 0;
   std::uint64_t memory_ = available_memory();  // what the triangles may take
   bool have_camera_ = false;
@@ -453,6 +469,7 @@ class GltfReader {
     int mesh;
     Mat4 world;
     std::vector<double> weights;
+    int skin;  // -1: none
   };
   std::vector<Placement> placements_;
 };
@@ -952,6 +969,98 @@ std::vector<double> GltfReader::morph_weights(int node, const std::string& at) {
   return std::vector<double>(targets, 0.0);
 }
 
+// Every skin, checked whether a node uses it or not: its joints name nodes; its
+// inverseBindMatrices (absent: identities) are float MAT4s, one per joint at least, finite
+// and affine.
+void GltfReader::read_skins() {
+  // A float matrix whose last row an exporter wrote as 0 0 0 1, or computed by inverting in
+  // float, is within 1e-7 or so of it; 1e-5 leaves room and refuses projections. The last row
+  // is then taken as exactly 0 0 0 1.
+  constexpr double kAffine = 1e-5;
+  skins_.resize(model_.skins.size());
+  for (std::size_t k = 0; k < model_.skins.size(); ++k) {
+    const tinygltf::Skin& g = model_.skins[k];
+    const std::string at = "skin " + named(int(k), g.name);
+    Skin& skin = skins_[k];
+    for (std::size_t j = 0; j < g.joints.size(); ++j)
+      if (g.joints[j] < 0 || std::size_t(g.joints[j]) >= model_.nodes.size())
+        fail(at + ": joints[" + std::to_string(j) + "]: node " + std::to_string(g.joints[j]) +
+             " does not exist (" + std::to_string(model_.nodes.size()) + " nodes)");
+    skin.joints = g.joints;
+    skin.inverse_bind.assign(g.joints.size(), kIdentity);
+    if (g.inverseBindMatrices < 0) continue;
+    const std::string m_at = at + " inverseBindMatrices";
+    const Accessor ibm = accessor(g.inverseBindMatrices, m_at, {TINYGLTF_COMPONENT_TYPE_FLOAT}, 16);
+    if (ibm.count < g.joints.size())
+      fail(m_at + " has " + std::to_string(ibm.count) + " elements, its skin " +
+           std::to_string(g.joints.size()) + " joints");
+    for (std::size_t j = 0; j < g.joints.size(); ++j) {
+      Mat4& m = skin.inverse_bind[j];
+      for (int e = 0; e < 16; ++e) {
+        m[std::size_t(e)] = ibm.get(j, e);
+        if (!std::isfinite(m[std::size_t(e)]))
+          fail(m_at + " element " + std::to_string(j) + " holds " + fmt(m[std::size_t(e)]));
+      }
+      if (!(std::abs(m[3]) <= kAffine && std::abs(m[7]) <= kAffine && std::abs(m[11]) <= kAffine &&
+            std::abs(m[15] - 1) <= kAffine))
+        fail(m_at + " element " + std::to_string(j) + " is not affine (its last row is " +
+             fmt(m[3]) + " " + fmt(m[7]) + " " + fmt(m[11]) + " " + fmt(m[15]) +
+             ", expected 0 0 0 1)");
+      m[3] = m[7] = m[11] = 0;
+      m[15] = 1;
+    }
+  }
+}
+
+// Node `node`'s world matrix as posed, found by following its parents up to a root (glTF
+// gives a node one parent at most; a joint's world matrix needs it).
+Mat4 GltfReader::node_world(int node, const std::string& at) {
+  if (parent_.empty()) {
+    parent_.assign(model_.nodes.size(), -1);
+    for (std::size_t p = 0; p < model_.nodes.size(); ++p)
+      for (const int c : model_.nodes[p].children)
+        if (c >= 0 && std::size_t(c) < parent_.size())
+          parent_[std::size_t(c)] = parent_[std::size_t(c)] == -1 ? int(p) : -2;
+    world_.resize(model_.nodes.size());
+    world_known_.assign(model_.nodes.size(), 0);
+  }
+  std::vector<int> chain;  // from `node` up to a root or a node of known world matrix
+  int k = node;
+  while (k >= 0 && !world_known_[std::size_t(k)]) {
+    const std::string k_at = "node " + named(k, model_.nodes[std::size_t(k)].name);
+    if (parent_[std::size_t(k)] == -2)
+      fail(at + ": " + k_at + " has several parents, so no one world matrix (glTF allows one)");
+    if (chain.size() > std::size_t(kMaxGltfDepth))
+      fail(at + ": " + k_at + " is nested more than " + std::to_string(kMaxGltfDepth) +
+           " deep, or is its own ancestor (a cycle)");
+    chain.push_back(k);
+    k = parent_[std::size_t(k)];
+  }
+  Mat4 world = k >= 0 ? world_[std::size_t(k)] : kIdentity;
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+    const std::size_t n = std::size_t(*it);
+    const NodeTrs* posed = posed_.empty() ? nullptr : &posed_[n];
+    world = world * local_matrix(model_.nodes[n], posed,
+                                 path_ + ": node " + named(*it, model_.nodes[n].name));
+    world_[n] = world;
+    world_known_[n] = 1;
+  }
+  return world_[std::size_t(node)];
+}
+
+// Skin `skin`'s joint matrices as posed (glTF 2.0 3.7.3): joint j's world matrix times its
+// inverse bind matrix, which together take a vertex of the mesh into the world.
+const std::vector<Mat4>& GltfReader::joint_matrices(int skin) {
+  Skin& s = skins_[std::size_t(skin)];
+  if (s.matrices.empty()) {
+    const std::string at = "skin " + named(skin, model_.skins[std::size_t(skin)].name);
+    for (std::size_t j = 0; j < s.joints.size(); ++j)
+      s.matrices.push_back(node_world(s.joints[j], at + " joints[" + std::to_string(j) + "]") *
+                           s.inverse_bind[j]);
+  }
+  return s.matrices;
+}
+
 void GltfReader::walk(int root, const Mat4& parent) {
   // Depth first with an explicit stack, nodes in the order a recursion would visit them (a
   // recursion 1024 deep overflowed the stack of the AddressSanitizer build).
@@ -982,8 +1091,10 @@ void GltfReader::walk(int root, const Mat4& parent) {
       if (std::size_t(n.mesh) >= model_.meshes.size())
         fail(at + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
              std::to_string(model_.meshes.size()) + " meshes)");
-      if (n.skin >= 0) warn_once("skin", "skins are not supported; meshes are drawn unskinned");
-      placements_.push_back({n.mesh, world, morph_weights(node, at)});
+      if (n.skin >= 0 && std::size_t(n.skin) >= skins_.size())
+        fail(at + ": skin " + std::to_string(n.skin) + " does not exist (" +
+             std::to_string(skins_.size()) + " skins)");
+      placements_.push_back({n.mesh, world, morph_weights(node, at), n.skin});
     }
     on_path_[std::size_t(node)] = 1;
     stack.push_back({node, world, 0});
@@ -1008,16 +1119,24 @@ void GltfReader::walk(int root, const Mat4& parent) {
 // mesh placed once is read into the world, where one tree over all such meshes traces
 // faster than a tree per mesh. A node whose transform cannot be inverted (a scale of 0,
 // which hides it) or would take its triangles beyond float arithmetic is read into the
-// world too, where its degenerate triangles are dropped.
+// world too, where its degenerate triangles are dropped. A skinned node's vertices are its
+// own (its joints place each one): it is always read into the world, and not counted among
+// its mesh's uses, so the mesh's plain nodes may still share it.
 void GltfReader::place_meshes() {
   std::vector<int> uses(model_.meshes.size(), 0);
-  for (const Placement& p : placements_) ++uses[std::size_t(p.mesh)];
+  for (const Placement& p : placements_)
+    if (p.skin < 0) ++uses[std::size_t(p.mesh)];
   // glTF mesh -> instanced mesh: -1 not read yet, -2 nothing to place
   std::vector<int> instanced(model_.meshes.size(), -1);
   std::vector<AreaRange> areas;
   for (const Placement& p : placements_) {
     const std::size_t m = std::size_t(p.mesh);
     const std::size_t primitives = model_.meshes[m].primitives.size();
+    if (p.skin >= 0) {
+      for (std::size_t k = 0; k < primitives; ++k)
+        add_primitive(p.mesh, int(k), p.world, p.weights, nullptr, p.skin);
+      continue;
+    }
     Affine a;
     for (std::size_t r = 0; r < 3; ++r)
       for (std::size_t c = 0; c < 4; ++c) a.m[r][c] = p.world[c * 4 + r];
@@ -1049,7 +1168,7 @@ void GltfReader::place_meshes() {
 }
 
 void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world,
-                               const std::vector<double>& weights, Mesh* into) {
+                               const std::vector<double>& weights, Mesh* into, int skin) {
   const tinygltf::Mesh& gm = model_.meshes[std::size_t(mesh_index)];
   const tinygltf::Primitive& prim = gm.primitives[std::size_t(prim_index)];
   const std::string at =
@@ -1127,11 +1246,84 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     return v;
   };
 
+  // Skinning (glTF 2.0 3.7.3): vertex i is placed by the sum over its four joints of
+  // weight x joint matrix (the node's own world matrix is ignored), after morphing. Weights
+  // are >= 0 and sum to 1 within the tolerance of their type; they are divided by their sum.
+  // A joint of weight 0 is not read. Four joints a vertex: JOINTS_1 and WEIGHTS_1 are refused.
+  const std::vector<Mat4>* joints = skin >= 0 ? &joint_matrices(skin) : nullptr;
+  std::optional<Accessor> joint_index, joint_weight;
+  double weight_tolerance = 0;
+  const std::string skin_at =
+      skin >= 0 ? "skin " + named(skin, model_.skins[std::size_t(skin)].name) : "";
+  if (joints) {
+    if (attribute("JOINTS_1") >= 0 || attribute("WEIGHTS_1") >= 0)
+      fail(at + ": has JOINTS_1 or WEIGHTS_1; rt2 reads four joints a vertex (JOINTS_0, "
+                "WEIGHTS_0)");
+    const int j_index = attribute("JOINTS_0"), w_index = attribute("WEIGHTS_0");
+    if (j_index < 0 || w_index < 0)
+      fail(at + ": its node has " + skin_at + ", but it has no " +
+           (j_index < 0 ? "JOINTS_0" : "WEIGHTS_0") + " attribute");
+    joint_index = accessor(j_index, at + " JOINTS_0",
+                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                           4);
+    if (joint_index->normalized) fail(at + ": JOINTS_0: joint indices must not be normalized");
+    joint_weight = accessor(w_index, at + " WEIGHTS_0",
+                            {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                            4);
+    if (joint_weight->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !joint_weight->normalized)
+      fail(at + ": WEIGHTS_0: integer weights must be normalized");
+    for (const Accessor* a : {&*joint_index, &*joint_weight})
+      if (a->count != pos.count)
+        fail(at + ": " + (a == &*joint_index ? "JOINTS_0" : "WEIGHTS_0") + " has " +
+             std::to_string(a->count) + " elements, POSITION " + std::to_string(pos.count));
+    // Float weights normalized in float sum to 1 within a few ulps; 2e-3 also lets through
+    // weights an exporter wrote with three decimals, and refuses weights never normalized.
+    // Four normalized integers, each rounded (at most half a step off) or truncated (less
+    // than a step), sum to 1 within 4 steps.
+    weight_tolerance = joint_weight->component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ? 2e-3
+                       : joint_weight->component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE
+                           ? 4.0 / 255
+                           : 4.0 / 65535;
+  }
+  // The matrix that places vertex i: the node's world matrix, or its joints' blend.
+  const auto vertex_matrix = [&](std::size_t i) {
+    if (!joints) return world;
+    std::array<double, 4> w;
+    double sum = 0;
+    for (int k = 0; k < 4; ++k) {
+      w[std::size_t(k)] = joint_weight->get(i, k);
+      if (!(w[std::size_t(k)] >= 0) || !std::isfinite(w[std::size_t(k)]))
+        fail(at + ": WEIGHTS_0 " + std::to_string(i) + " holds " + fmt(w[std::size_t(k)]) +
+             ", expected a weight >= 0");
+      sum += w[std::size_t(k)];
+    }
+    if (!(std::abs(sum - 1) <= weight_tolerance))
+      fail(at + ": WEIGHTS_0 " + std::to_string(i) + " sums to " + fmt(sum) +
+           ", expected 1 (within " + fmt(weight_tolerance) + ")");
+    Mat4 m{};
+    for (int k = 0; k < 4; ++k) {
+      if (w[std::size_t(k)] == 0) continue;
+      const double j = joint_index->get(i, k);
+      if (!(j < double(joints->size())))
+        fail(at + ": JOINTS_0 " + std::to_string(i) + " names joint " + fmt(j) + ", but " +
+             skin_at + " has " + std::to_string(joints->size()) + " joints");
+      const Mat4& jm = (*joints)[std::size_t(j)];
+      for (std::size_t e = 0; e < 16; ++e) m[e] += w[std::size_t(k)] / sum * jm[e];
+    }
+    return m;
+  };
+  // Per vertex of a skinned primitive, whether its matrix mirrors (a negative determinant).
+  std::vector<char> mirrored(joints ? pos.count : 0, 0);
+
   Mesh mesh;
   mesh.name = fs::path(path_).filename().string() + ":" + at;
   mesh.positions.reserve(pos.count);
   for (std::size_t i = 0; i < pos.count; ++i) {
-    const Vec3d p = transform_point(world, morphed(pos, &Morph::position, i));
+    const Mat4 m = vertex_matrix(i);
+    if (joints) mirrored[i] = determinant3(m) < 0;
+    const Vec3d p = transform_point(m, morphed(pos, &Morph::position, i));
     if (!fits_float(p))
       fail(at + ": POSITION " + std::to_string(i) + " is not a finite float (" +
            fmt(pos.get(i, 0)) + " " + fmt(pos.get(i, 1)) + " " + fmt(pos.get(i, 2)) +
@@ -1150,11 +1342,13 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     if (nrm.count != pos.count)
       fail(at + ": NORMAL has " + std::to_string(nrm.count) + " elements, POSITION " +
            std::to_string(pos.count));
+    // cofactor · sign(det) is the inverse transpose times |det|, which normalizing removes.
     const Mat4 normal_matrix = cofactor(world);
-    const double sign = det < 0 ? -1.0 : 1.0;
     mesh.normals.reserve(nrm.count);
     for (std::size_t i = 0; i < nrm.count; ++i) {
-      Vec3d n = transform_vector(normal_matrix, morphed(nrm, &Morph::normal, i));
+      const Mat4 m = joints ? cofactor(vertex_matrix(i)) : normal_matrix;
+      const double sign = (joints ? mirrored[i] : det < 0) ? -1.0 : 1.0;
+      Vec3d n = transform_vector(m, morphed(nrm, &Morph::normal, i));
       n = normalized({n.x * sign, n.y * sign, n.z * sign});
       if (!finite3(n)) {  // a zero normal, or a singular transform: flat shading
         mesh.normals.clear();
@@ -1214,8 +1408,9 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
          "about " + memory_size(triangles_ * kBytesPerTriangle) + "; " + memory_size(memory_) +
          " of memory is available");
   const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    // A mirroring transform (det < 0) turns the winding; glTF says to turn it back.
-    if (det < 0) std::swap(b, c);
+    // A mirroring transform (det < 0) turns the winding; glTF says to turn it back. A skinned
+    // triangle is turned back when two or three of its corners' matrices mirror.
+    if (joints ? mirrored[a] + mirrored[b] + mirrored[c] >= 2 : det < 0) std::swap(b, c);
     mesh.faces.push_back({a, b, c});
   };
   const std::size_t n = corners.size();
@@ -1358,6 +1553,7 @@ Scene GltfReader::read() {
       if (!child[i]) roots.push_back(int(i));
   }
   pose_nodes();
+  read_skins();
   for (const int r : roots) walk(r, kIdentity);
   place_meshes();
   const bool empty = scene_.meshes.empty() && scene_.instances.empty();

@@ -24,6 +24,7 @@ constexpr std::size_t kMaxGltfLights = 4096;          // light instances (none h
 constexpr std::size_t kMaxGltfKeyValues = 1u << 26;   // keyframe numbers of all animations
 constexpr std::size_t kMaxGltfMorphTargets = 1024;    // morph targets of a mesh
 constexpr std::size_t kMaxGltfMorphReads = 1u << 27;  // target vertices read, all instances
+constexpr std::size_t kMaxGltfJoints = 1u << 16;      // joints of a skin (JOINTS_0 is 16-bit)
 
 // Reads the glTF 2.0 file `path` (JSON or binary, told apart by its first bytes, "glTF"
 // for binary). Images are not decoded: a file image becomes a TextureDesc with its path
@@ -35,6 +36,7 @@ constexpr std::size_t kMaxGltfMorphReads = 1u << 27;  // target vertices read, a
 //
 // The nodes are posed as animation `pose.animation` (by name or index; the first when empty)
 // moves them at `pose.seconds`; every animation is checked, and listed in Scene::animations.
+// A skinned mesh's vertices are placed by its skin's joints as posed (glTF 2.0 3.7.3).
 Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy,
                       const ScenePose& pose = {});
 

@@ -1055,6 +1055,103 @@ def pbr():
         scene_error(name, toml, message, line)
 
 
+# ---- glTF skins ------------------------------------------------------------------------------
+
+def gltf_skin(joints=(0, 0, 0, 0) * 3, weights=(1, 0, 0, 0) * 3, weights_component=5126,
+              ibm=(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1), ibm_type="MAT4",
+              skin=None, nodes=None, attributes=None, normalized=True):
+    """The one-triangle glTF skinned by one joint (node 1): accessor 1 holds JOINTS_0 (unsigned
+    bytes), 2 WEIGHTS_0 (floats unless `weights_component` says otherwise), 3 `ibm` (floats,
+    of `ibm_type`); node 0 has the mesh and skin 0."""
+    import base64
+    import json
+    import struct
+    d, bin_ = gltf_json()
+    fmt = {5126: "<f", 5121: "<B", 5123: "<H"}[weights_component]
+    parts = [bytes(joints), b"".join(struct.pack(fmt, x) for x in weights),
+             struct.pack(f"<{len(ibm)}f", *ibm)]
+    width = {"MAT4": 16, "VEC4": 4}[ibm_type]
+    for i, (part, component, type_, count) in enumerate([
+            (parts[0], 5121, "VEC4", len(joints) // 4),
+            (parts[1], weights_component, "VEC4", len(weights) // 4),
+            (parts[2], 5126, ibm_type, len(ibm) // width)]):
+        while len(part) % 4:
+            part += b"\0"
+        d["bufferViews"].append({"buffer": 0, "byteOffset": len(bin_), "byteLength": len(part)})
+        d["accessors"].append(dict({"bufferView": i + 1, "componentType": component,
+                                    "count": count, "type": type_},
+                                   **({"normalized": True} if i == 1 and component != 5126
+                                      and normalized else {})))
+        bin_ += part
+    d["buffers"] = [{"byteLength": len(bin_), "uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(bin_).decode()}]
+    d["meshes"][0]["primitives"][0]["attributes"] = attributes if attributes is not None else \
+        {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}
+    d["skins"] = [skin if skin is not None else {"joints": [1], "inverseBindMatrices": 3}]
+    d["nodes"] = nodes if nodes is not None else [{"mesh": 0, "skin": 0}, {"translation": [1, 2, 3]}]
+    d["scenes"] = [{"nodes": [0, 1]}] if len(d["nodes"]) > 1 else [{"nodes": [0]}]
+    return json.dumps(d, indent=1)
+
+
+def gltf_skins():
+    """Malformed skins and skinned primitives: one clear line each."""
+    nan = float("nan")
+    ok("gltf_skin_one_joint", "gltf", "quiet: true\nfaces: 1\n", gltf=gltf_skin())
+    ok("gltf_skin_weights_normalized_bytes", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_skin(weights=(254, 0, 0, 0) * 3, weights_component=5121))
+    ok("gltf_skin_node_without_mesh", "gltf", "quiet: true\nfaces: 1\n",
+       gltf=gltf_skin(nodes=[{"mesh": 0}, {"skin": 0}]))
+    for name, message, kw in [
+        ("gltf_skin_joint_index_out_of_range",
+         "JOINTS_0 1 names joint 3, but skin #0 has 1 joints",
+         dict(joints=(0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0), weights=(1, 0, 0, 0, 0.5, 0.5, 0, 0) +
+              (1, 0, 0, 0))),
+        ("gltf_skin_weights_sum", "WEIGHTS_0 0 sums to 0.75, expected 1 (within 0.002)",
+         dict(weights=(0.5, 0.25, 0, 0) * 3)),
+        ("gltf_skin_weights_bytes_sum", "WEIGHTS_0 0 sums to 0.97647",
+         dict(weights=(249, 0, 0, 0) * 3, weights_component=5121)),
+        ("gltf_skin_weights_bytes_not_normalized", "WEIGHTS_0: integer weights must be normalized",
+         dict(weights=(255, 0, 0, 0) * 3, weights_component=5121, normalized=False)),
+        ("gltf_skin_weight_negative", "WEIGHTS_0 0 holds -0.5, expected a weight >= 0",
+         dict(weights=(1.5, -0.5, 0, 0) * 3)),
+        ("gltf_skin_weight_nan", "WEIGHTS_0 2 holds nan", dict(weights=(1, 0, 0, 0) * 2 + (nan, 1, 0, 0))),
+        ("gltf_skin_ibm_nan", "skin #0 inverseBindMatrices element 0 holds nan",
+         dict(ibm=(1, 0, 0, 0, 0, nan, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1))),
+        ("gltf_skin_ibm_infinite", "skin #0 inverseBindMatrices element 0 holds inf",
+         dict(ibm=(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, float("inf"), 0, 0, 1))),
+        ("gltf_skin_ibm_not_affine",
+         "skin #0 inverseBindMatrices element 0 is not affine (its last row is 0 0 1 1, expected 0 0 0 1)",
+         dict(ibm=(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1))),
+        ("gltf_skin_ibm_vec4", "skin #0 inverseBindMatrices: accessor 3: has 4 components per "
+         "element, expected 16", dict(ibm=(1, 0, 0, 0) * 4, ibm_type="VEC4")),
+        ("gltf_skin_ibm_too_few", "skin #0 inverseBindMatrices has 1 elements, its skin 2 joints",
+         dict(skin={"joints": [1, 2], "inverseBindMatrices": 3},
+              nodes=[{"mesh": 0, "skin": 0}, {"children": [2]}, {}])),
+        ("gltf_skin_ibm_missing", "skin #0 inverseBindMatrices: accessor 9 does not exist",
+         dict(skin={"joints": [1], "inverseBindMatrices": 9})),
+        ("gltf_skin_joint_node_out_of_range", "skin #0: joints[1]: node 7 does not exist (2 nodes)",
+         dict(skin={"joints": [1, 7]})),
+        ("gltf_skin_joints_empty", "skins[0].joints has 0 elements, expected 1 to 65536",
+         dict(skin={"joints": []})),
+        ("gltf_skin_joints_twice", "skins[0].joints names 1 twice", dict(skin={"joints": [1, 1]})),
+        ("gltf_skin_joints_missing", "skins[0] has no 'joints', which glTF requires",
+         dict(skin={"inverseBindMatrices": 3})),
+        ("gltf_skin_out_of_range", "node #0: skin 4 does not exist (1 skins)",
+         dict(nodes=[{"mesh": 0, "skin": 4}, {}])),
+        ("gltf_skin_without_joints_attribute", "its node has skin #0, but it has no JOINTS_0 attribute",
+         dict(attributes={"POSITION": 0, "WEIGHTS_0": 2})),
+        ("gltf_skin_without_weights_attribute",
+         "its node has skin #0, but it has no WEIGHTS_0 attribute",
+         dict(attributes={"POSITION": 0, "JOINTS_0": 1})),
+        ("gltf_skin_joints_1", "has JOINTS_1 or WEIGHTS_1; rt2 reads four joints a vertex",
+         dict(attributes={"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2, "JOINTS_1": 1,
+                          "WEIGHTS_1": 2})),
+        ("gltf_skin_joint_with_two_parents", "has several parents",
+         dict(nodes=[{"mesh": 0, "skin": 0}, {}, {"children": [1]}, {"children": [1]}])),
+    ]:
+        error(name, "gltf", message, gltf=gltf_skin(**kw))
+
+
 def main():
     malformed_toml()
     fuzz_found()
@@ -1073,6 +1170,7 @@ def main():
     gltf_assets()
     gltf_animations()
     gltf_morphs()
+    gltf_skins()
 
 
 if __name__ == "__main__":
