@@ -205,10 +205,13 @@ double Accel::refit(const Scene& scene, const BvhConfig& config, int threads) {
       if (faces.total() != record.count)
         throw Error("refit: the scene's triangles are not those the trees were built over");
       bool moved = false;
+      std::size_t first = record.first;
+      for (const Mesh& m : meshes) {  // mesh by mesh: no search per triangle
+        const auto n = static_cast<std::uint32_t>(m.faces.size());
 #pragma omp parallel for num_threads(team) schedule(static) reduction(|| : moved)
-      for (std::uint32_t k = 0; k < faces.total(); ++k) {
-        const auto [m, face] = faces(k);
-        moved = put_triangle(*m, face, columns, record.first + k, *this) || moved;
+        for (std::uint32_t face = 0; face < n; ++face)
+          moved = put_triangle(m, face, columns, first + face, *this) || moved;
+        first += n;
       }
       if (!moved) continue;
       WideBvh<N>& tree = t == 0 ? wide<N>() : mesh_trees_of<N>(mesh_trees)[t - 1];
