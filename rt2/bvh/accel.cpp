@@ -204,18 +204,20 @@ double Accel::refit(const Scene& scene, const BvhConfig& config, int threads) {
       const TreeRecord& record = trees[t];
       if (faces.total() != record.count)
         throw Error("refit: the scene's triangles are not those the trees were built over");
+      // Below some 64k triangles a second thread costs more than it saves.
+      const int tree_team = record.count < 65536 ? 1 : team;
       bool moved = false;
       std::size_t first = record.first;
       for (const Mesh& m : meshes) {  // mesh by mesh: no search per triangle
         const auto n = static_cast<std::uint32_t>(m.faces.size());
-#pragma omp parallel for num_threads(team) schedule(static) reduction(|| : moved)
+#pragma omp parallel for num_threads(tree_team) schedule(static) reduction(|| : moved)
         for (std::uint32_t face = 0; face < n; ++face)
           moved = put_triangle(m, face, columns, first + face, *this) || moved;
         first += n;
       }
       if (!moved) continue;
       WideBvh<N>& tree = t == 0 ? wide<N>() : mesh_trees_of<N>(mesh_trees)[t - 1];
-      refit_bvh<N>(tree, tris, blocks, team);
+      refit_bvh<N>(tree, tris, blocks, tree_team);
       if (record.built_cost > 0.0)
         growth = std::max(growth, tree_cost(tree, blocks) / record.built_cost);
     }
