@@ -13,11 +13,10 @@
 
 namespace rt2cpr {
 
-rt2::Scene load_scene(const Options& o) {
-  if (o.scene.empty() && !o.pose.animation.empty())
-    throw rt2::Error("the built-in scene has no animations (--animation " + o.pose.animation + ")");
-  rt2::Scene scene =
-      o.scene.empty() ? rt2::make_default_scene() : rt2::load_scene(o.scene, o.assets, o.pose);
+namespace {
+
+// What load_scene does to the scene a file gives.
+void as_the_options_say(rt2::Scene& scene, const Options& o) {
   if (!o.camera.empty()) {
     scene.camera = rt2::load_camera(o.camera);
     scene.framed_bounds.reset();
@@ -33,6 +32,24 @@ rt2::Scene load_scene(const Options& o) {
     scene.environment = rt2::EnvironmentDesc{.image = o.environment};
   }
   warn_about_added_lights(scene, o.lights, o.light_range);
+}
+
+}  // namespace
+
+rt2::Scene load_scene(const Options& o, rt2::ScenePoser* poser) {
+  if (o.scene.empty() && !o.pose.animation.empty())
+    throw rt2::Error("the built-in scene has no animations (--animation " + o.pose.animation + ")");
+  if (poser) *poser = rt2::ScenePoser();
+  rt2::Scene scene = o.scene.empty() ? rt2::make_default_scene()
+                                     : rt2::load_scene(o.scene, o.assets, o.pose, poser);
+  as_the_options_say(scene, o);
+  return scene;
+}
+
+rt2::Scene load_scene_at(const Options& o, const rt2::ScenePoser& poser, double seconds) {
+  rt2::Scene scene = poser.at(seconds);
+  const rt2::io::WarningsOff quiet;  // the first load warned
+  as_the_options_say(scene, o);
   return scene;
 }
 
@@ -88,7 +105,7 @@ auto timed(double& ms, Make make) {
 RenderSetup::RenderSetup(const Options& o)
     : scene(timed(load_ms,
                   [&] {
-                    rt2::Scene s = load_scene(o);
+                    rt2::Scene s = load_scene(o, &poser);
                     set_lights(s, o.lights, o.light_range);
                     return s;
                   })),
@@ -97,19 +114,16 @@ RenderSetup::RenderSetup(const Options& o)
       film(o.render.width, o.render.height) {}
 
 std::optional<RenderSetup::PoseTimes> RenderSetup::pose(const Options& o, int frame) {
-  if (scene.animation < 0) return std::nullopt;
-  Options at = o;
-  at.pose.seconds = frame_seconds(o, frame);
+  if (!poser) return std::nullopt;
   PoseTimes t;
   const rt2::io::WarningsOff quiet;  // the first load warned
   rt2::Scene next = timed(t.load_ms, [&] {
-    rt2::Scene s = load_scene(at);
+    rt2::Scene s = load_scene_at(o, poser, frame_seconds(o, frame));
     set_lights(s, o.lights, o.light_range);
     return s;
   });
   const auto t0 = Clock::now();
-  next.validate();
-  rt2::recenter_on_camera(next);
+  rt2::recenter_on_camera(next);  // place validates it
   const bool refit = rt2::same_topology(scene, next);
   scene = std::move(next);
   compiled.place(scene, o.bvh, o.isa, refit);

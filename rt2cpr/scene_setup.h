@@ -7,6 +7,7 @@
 
 #include "rt2/render/compiled_scene.h"
 #include "rt2/image/film.h"
+#include "rt2/io/scene_io.h"
 #include "rt2/render/renderer.h"
 #include "rt2/scene/scene.h"
 #include "rt2cpr/options.h"
@@ -18,8 +19,13 @@ namespace rt2cpr {
 // (Scene::framed_bounds: a bare OBJ, a glTF without a camera) fitted to o.render's width and
 // height, and the environment of --environment when given (`sky` keeps the scene's sun,
 // intensity and rotation); its lights are the file's (set_lights sets them), with
-// warn_about_added_lights's warning. Throws rt2::Error.
-rt2::Scene load_scene(const Options& o);
+// warn_about_added_lights's warning. For a scene that moves, `poser` (when given) keeps its
+// parsed file. Throws rt2::Error.
+rt2::Scene load_scene(const Options& o, rt2::ScenePoser* poser = nullptr);
+
+// load_scene(o) with o.pose.seconds = `seconds`, bit for bit, from the poser load_scene gave
+// (the file is not read again), without warnings. Throws rt2::Error.
+rt2::Scene load_scene_at(const Options& o, const rt2::ScenePoser& poser, double seconds);
 
 // How much brighter than its own lights (their summed intensity times colour) the lights
 // --lights adds may make a scene before warn_about_added_lights warns: two stops, so that
@@ -54,8 +60,8 @@ struct RenderSetup {
   RenderSetup(const RenderSetup&) = delete;
   RenderSetup& operator=(const RenderSetup&) = delete;
 
-  // An animated scene (Scene::animation >= 0) posed for frame `frame` of `o`: loaded again
-  // at frame_seconds(o, frame), placed (CompiledScene::place: trees, lights; the materials,
+  // An animated scene (Scene::animation >= 0) posed for frame `frame` of `o`: posed again
+  // at frame_seconds(o, frame) (load_scene_at), placed (CompiledScene::place: trees, lights; the materials,
   // textures and environment stay) and its camera given to the renderer, so that the frame
   // is what a fresh set-up at that time renders. Returns how long loading and placing took;
   // nothing, doing nothing, for a scene that does not move. Throws rt2::Error.
@@ -67,6 +73,7 @@ struct RenderSetup {
 
   double load_ms = 0.0;   // load_scene and set_lights
   double build_ms = 0.0;  // compile_at_camera
+  rt2::ScenePoser poser;  // the parsed file of a scene that moves
   rt2::Scene scene;
   rt2::CompiledScene compiled;
   rt2::Renderer renderer;

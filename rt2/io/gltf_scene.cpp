@@ -10,6 +10,7 @@
 // accessor 3 (POSITION): ...".
 #include "rt2/io/gltf_scene.h"
 
+#include <omp.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -18,9 +19,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <initializer_list>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,6 +39,15 @@
 #include "rt2/io/text.h"
 
 namespace rt2::io {
+
+// A file as tinygltf parsed it, and what its first reading found that every pose shares.
+struct ParsedGltf {
+  tinygltf::Model model;
+  bool quantized = false;  // KHR_mesh_quantization: integer texture coordinates as declared
+  std::optional<std::vector<Animation>> animations;  // every animation, checked
+  std::optional<Aabb> still;  // the bounds of the file's own node transforms (an animated file)
+};
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -136,7 +148,8 @@ std::string first_line(const std::string& msg) {
 // The glTF model of `path`: checked and taken apart (gltf_document.h), read by tinygltf,
 // its compressed parts decoded (gltf_compression.h). Every buffer file it names is checked
 // with asset_file first, so that a refused one is named in rt2's words.
-tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, bool& quantized) {
+void parse_model(const std::string& path, const AssetPolicy& policy, tinygltf::Model& model,
+                 bool& quantized) {
   const std::string bytes = read_file(path, kMaxGltfBytes, "");
   if (bytes.empty()) error_at(path, 0, 0, "file is empty");
   const GltfDocument doc = read_gltf_document(path, bytes);
@@ -160,7 +173,6 @@ tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, 
   loader.SetFsCallbacks(
       {&file_exists, &expand_file_path, &read_whole_file, &refuse_write, &folder});
   loader.SetImageLoader(&keep_undecoded, nullptr);
-  tinygltf::Model model;
   std::string err, warn;
   const std::string input = tinygltf_bytes(doc);
   const auto* data = reinterpret_cast<const unsigned char*>(input.data());
@@ -170,7 +182,6 @@ tinygltf::Model parse_model(const std::string& path, const AssetPolicy& policy, 
                       : loader.LoadASCIIFromString(&model, &err, &warn, input.data(), size, base);
   if (!ok) error_at(path, 0, 0, first_line(err));
   decode_compressed(path, doc, model);
-  return model;
 }
 
 // ---- transforms, in double ----------------------------------------------------------------
@@ -228,6 +239,37 @@ bool fits_float(const Vec3d& v) {
 }
 
 vec4 to_vec4(const Vec3d& v) { return vec4(float(v.x), float(v.y), float(v.z)); }
+
+// Calls each(i) for every i in [0, n), on OpenMP's threads when n is large. Throws what the
+// call of the lowest i that threw threw, as a serial loop would: each thread takes a run of
+// consecutive indices and stops at its first throw.
+template <class Each>
+void for_each_index(std::size_t n, Each&& each) {
+  constexpr std::size_t kSerialBelow = 1u << 14;
+  if (n < kSerialBelow) {
+    for (std::size_t i = 0; i < n; ++i) each(i);
+    return;
+  }
+  std::size_t first = n;
+  std::exception_ptr error;
+#pragma omp parallel
+  {
+    const auto t = std::size_t(omp_get_thread_num()), threads = std::size_t(omp_get_num_threads());
+    for (std::size_t i = n * t / threads, end = n * (t + 1) / threads; i < end; ++i) {
+      try {
+        each(i);
+      } catch (...) {
+#pragma omp critical(rt2_for_each_index)
+        if (i < first) {
+          first = i;
+          error = std::current_exception();
+        }
+        break;
+      }
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
 
 // ---- the loader ---------------------------------------------------------------------------
 
@@ -389,9 +431,10 @@ MetallicRoughness from_specular_glossiness(const std::array<double, 3>& diffuse,
 class GltfReader {
  public:
   // `animate` false: the file's own node transforms and weights, whatever `pose` says.
-  GltfReader(const std::string& path, const AssetPolicy& policy, const ScenePose& pose,
-             bool animate = true)
-      : path_(path), pose_(pose), animate_(animate), model_(parse_model(path, policy, quantized_)) {
+  GltfReader(ParsedGltf& file, const std::string& path, const AssetPolicy& policy,
+             const ScenePose& pose, bool animate = true)
+      : path_(path), pose_(pose), animate_(animate), file_(file), model_(file.model),
+        quantized_(file.quantized) {
     scene_.assets = policy;
   }
 
@@ -430,8 +473,9 @@ class GltfReader {
   std::string path_;
   ScenePose pose_;
   bool animate_;
-  bool quantized_ = false;  // KHR_mesh_quantization: integer texture coordinates as declared
-  tinygltf::Model model_;
+  ParsedGltf& file_;
+  const tinygltf::Model& model_;
+  bool quantized_;  // KHR_mesh_quantization: integer texture coordinates as declared
   Scene scene_;
   std::vector<int> material_of_;  // glTF material -> scene material, or -1
   std::vector<UvTransform> uv_transforms_;  // per glTF material (material() fills it)
@@ -917,8 +961,13 @@ void GltfReader::pose_nodes() {
   }
   if (!animate_) chosen = -1;
   if (!std::isfinite(pose_.seconds)) fail("the time " + fmt(pose_.seconds) + " is not finite");
+  if (!file_.animations) {  // checked once per file
+    std::vector<Animation> all;
+    for (std::size_t i = 0; i < model_.animations.size(); ++i) all.push_back(animation(int(i)));
+    file_.animations = std::move(all);
+  }
   for (std::size_t i = 0; i < model_.animations.size(); ++i) {
-    const Animation a = animation(int(i));
+    const Animation& a = (*file_.animations)[i];
     scene_.animations.push_back({a.name, a.duration()});
     if (int(i) != chosen) continue;
     posed_.resize(model_.nodes.size());
@@ -1314,49 +1363,54 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     }
     return m;
   };
-  // Per vertex of a skinned primitive, whether its matrix mirrors (a negative determinant).
-  std::vector<char> mirrored(joints ? pos.count : 0, 0);
+  const double det = determinant3(world);
+  std::optional<Accessor> nrm;
+  if (const int n_index = attribute("NORMAL"); n_index >= 0) {
+    nrm = accessor(n_index, at + " NORMAL",
+                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                    TINYGLTF_COMPONENT_TYPE_SHORT},
+                   3);
+    if (nrm->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm->normalized)
+      fail(at + ": NORMAL accessor " + std::to_string(n_index) +
+           ": integer normals must be normalized");
+    if (nrm->count != pos.count)
+      fail(at + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " +
+           std::to_string(pos.count));
+  }
 
+  // Each vertex's position and normal (cofactor · sign(det) is the inverse transpose times
+  // |det|, which normalizing removes), and for a skinned primitive whether its matrix
+  // mirrors (a negative determinant).
   Mesh mesh;
   mesh.name = fs::path(path_).filename().string() + ":" + at;
-  mesh.positions.reserve(pos.count);
-  for (std::size_t i = 0; i < pos.count; ++i) {
+  mesh.positions.resize(pos.count);
+  if (nrm) mesh.normals.resize(pos.count);
+  std::vector<char> mirrored(joints ? pos.count : 0, 0);
+  std::vector<char> zero_normal(nrm ? pos.count : 0, 0);
+  const Mat4 normal_matrix = cofactor(world);
+  for_each_index(pos.count, [&](std::size_t i) {
     const Mat4 m = vertex_matrix(i);
-    if (joints) mirrored[i] = determinant3(m) < 0;
+    const bool mirror = joints ? determinant3(m) < 0 : det < 0;
+    if (joints) mirrored[i] = mirror;
     const Vec3d p = transform_point(m, morphed(pos, &Morph::position, i));
     if (!fits_float(p))
       fail(at + ": POSITION " + std::to_string(i) + " is not a finite float (" +
            fmt(pos.get(i, 0)) + " " + fmt(pos.get(i, 1)) + " " + fmt(pos.get(i, 2)) +
            " in the world: " + fmt(p.x) + " " + fmt(p.y) + " " + fmt(p.z) + ")");
-    mesh.positions.push_back(to_vec4(p));
-  }
-  const double det = determinant3(world);
-  if (const int n_index = attribute("NORMAL"); n_index >= 0) {
-    const Accessor nrm = accessor(n_index, at + " NORMAL",
-                                  {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                                   TINYGLTF_COMPONENT_TYPE_SHORT},
-                                  3);
-    if (nrm.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm.normalized)
-      fail(at + ": NORMAL accessor " + std::to_string(n_index) +
-           ": integer normals must be normalized");
-    if (nrm.count != pos.count)
-      fail(at + ": NORMAL has " + std::to_string(nrm.count) + " elements, POSITION " +
-           std::to_string(pos.count));
-    // cofactor · sign(det) is the inverse transpose times |det|, which normalizing removes.
-    const Mat4 normal_matrix = cofactor(world);
-    mesh.normals.reserve(nrm.count);
-    for (std::size_t i = 0; i < nrm.count; ++i) {
-      const Mat4 m = joints ? cofactor(vertex_matrix(i)) : normal_matrix;
-      const double sign = (joints ? mirrored[i] : det < 0) ? -1.0 : 1.0;
-      Vec3d n = transform_vector(m, morphed(nrm, &Morph::normal, i));
-      n = normalized({n.x * sign, n.y * sign, n.z * sign});
-      if (!finite3(n)) {  // a zero normal, or a singular transform: flat shading
-        mesh.normals.clear();
-        warn_once("normals", at + ": a zero or non-finite normal; the primitive is shaded flat");
-        break;
-      }
-      mesh.normals.push_back(to_vec4(n));
-    }
+    mesh.positions[i] = to_vec4(p);
+    if (!nrm) return;
+    const double sign = mirror ? -1.0 : 1.0;
+    Vec3d n = transform_vector(joints ? cofactor(m) : normal_matrix, morphed(*nrm, &Morph::normal, i));
+    n = normalized({n.x * sign, n.y * sign, n.z * sign});
+    if (finite3(n))
+      mesh.normals[i] = to_vec4(n);
+    else
+      zero_normal[i] = 1;
+  });
+  if (std::find(zero_normal.begin(), zero_normal.end(), 1) != zero_normal.end()) {
+    // a zero normal, or a singular transform: flat shading
+    mesh.normals.clear();
+    warn_once("normals", at + ": a zero or non-finite normal; the primitive is shaded flat");
   }
   if (const int t_index = attribute("TEXCOORD_0"); t_index >= 0) {
     Accessor uv = accessor(t_index, at + " TEXCOORD_0",
@@ -1527,10 +1581,12 @@ void GltfReader::finish_lights(const Framing& frame) {
 // animation: what a pose frames must not move from one time to the next.
 Framing GltfReader::still_framing() {
   if (scene_.animation < 0) return framing_of(path_, scene_.bounds(), "scene");
-  const WarningsOff quiet;  // this reading's warnings were the first one's
-  const Aabb still = GltfReader(path_, scene_.assets, pose_, false).read().bounds();
+  if (!file_.still) {
+    const WarningsOff quiet;  // this reading's warnings were the first one's
+    file_.still = GltfReader(file_, path_, scene_.assets, pose_, false).read().bounds();
+  }
   // unposed, the file may have nothing to frame (every triangle degenerate ...): this pose's
-  return framing_of(path_, still.is_empty() ? scene_.bounds() : still, "scene");
+  return framing_of(path_, file_.still->is_empty() ? scene_.bounds() : *file_.still, "scene");
 }
 
 Scene GltfReader::read() {
@@ -1572,8 +1628,19 @@ Scene GltfReader::read() {
 
 }  // namespace
 
+std::shared_ptr<ParsedGltf> parse_gltf(const std::string& path, const AssetPolicy& policy) {
+  auto file = std::make_shared<ParsedGltf>();
+  parse_model(path, policy, file->model, file->quantized);
+  return file;
+}
+
+Scene read_gltf_scene(ParsedGltf& file, const std::string& path, const AssetPolicy& policy,
+                      const ScenePose& pose) {
+  return GltfReader(file, path, policy, pose).read();
+}
+
 Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose) {
-  return GltfReader(path, policy, pose).read();
+  return read_gltf_scene(*parse_gltf(path, policy), path, policy, pose);
 }
 
 }  // namespace rt2::io

@@ -8,6 +8,7 @@
 // it maps is documented in scenes/FORMAT.md.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "rt2/scene/scene.h"
@@ -39,5 +40,14 @@ constexpr std::size_t kMaxGltfJoints = 1u << 16;      // joints of a skin (JOINT
 // A skinned mesh's vertices are placed by its skin's joints as posed (glTF 2.0 3.7.3).
 Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy,
                       const ScenePose& pose = {});
+
+// A glTF file parsed once and read at many poses: parse_gltf reads and parses `path` (the
+// file and its buffers; throws as read_gltf_scene does), and read_gltf_scene(file, ...)
+// returns what read_gltf_scene(path, ...) would, bit for bit, without touching the files
+// again (the first reading also keeps the checked animations and the still framing).
+struct ParsedGltf;
+std::shared_ptr<ParsedGltf> parse_gltf(const std::string& path, const AssetPolicy& policy);
+Scene read_gltf_scene(ParsedGltf& file, const std::string& path, const AssetPolicy& policy,
+                      const ScenePose& pose);
 
 }  // namespace rt2::io

@@ -14,6 +14,7 @@
 #include <cctype>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <new>
 #include <string>
 
@@ -37,10 +38,13 @@ using io::framing_of;
 using io::kMaxObjBytes;
 using io::obj_to_mesh;
 using io::one_line;
+using io::parse_gltf;
+using io::ParsedGltf;
 using io::read_gltf_scene;
 using io::read_text_file;
 using io::read_toml_scene;
 using io::validate;
+using io::WarningsOff;
 
 // How far under a bare OBJ its ground plane is, in units of R (half the mesh's diagonal).
 constexpr float kGroundGap = 1e-3f;
@@ -64,11 +68,28 @@ auto guarded(const std::string& path, F&& load) -> decltype(load()) {
 }  // namespace
 
 Scene load_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose) {
+  return load_scene(path, policy, pose, nullptr);
+}
+
+Scene load_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose,
+                 ScenePoser* poser) {
+  if (poser) *poser = ScenePoser();
   return guarded(path, [&] {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path, policy, pose);
+    if (ext == ".gltf" || ext == ".glb") {
+      if (!poser) return read_gltf_scene(path, policy, pose);
+      std::shared_ptr<ParsedGltf> file = parse_gltf(path, policy);
+      Scene scene = read_gltf_scene(*file, path, policy, pose);
+      if (scene.animation >= 0) {
+        poser->path_ = path;
+        poser->policy_ = policy;
+        poser->animation_ = pose.animation;
+        poser->file_ = std::move(file);
+      }
+      return scene;
+    }
     if ((ext == ".toml" || ext == ".obj") && !pose.animation.empty())
       error_at(path, 0, 0, "has no animations (asked for '" + one_line(pose.animation) + "')");
     if (ext == ".toml") return load_toml_scene(path, policy);
@@ -76,6 +97,14 @@ Scene load_scene(const std::string& path, const AssetPolicy& policy, const Scene
     error_at(path, 0, 0,
              (ext.empty() ? "no file extension" : "unknown file extension '" + ext + "'") +
                  "; expected a .toml scene, an .obj mesh or a .gltf/.glb glTF 2.0 scene");
+  });
+}
+
+Scene ScenePoser::at(double seconds) const {
+  if (!file_) throw Error("ScenePoser::at: no scene to pose");
+  const WarningsOff quiet;
+  return guarded(path_, [&] {
+    return read_gltf_scene(*file_, path_, policy_, ScenePose{animation_, seconds});
   });
 }
 

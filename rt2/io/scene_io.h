@@ -10,6 +10,7 @@
 // problems (a missing MTL library) are printed to stderr as one `warning: ...` line each.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "rt2/base/error.h"
@@ -25,6 +26,33 @@ namespace rt2 {
 // message on any problem.
 Scene load_scene(const std::string& path, const AssetPolicy& policy = {},
                  const ScenePose& pose = {});
+
+namespace io {
+struct ParsedGltf;
+}
+
+// A scene that moves, kept as its file was parsed: at(seconds) returns
+// load_scene(path, policy, {animation, seconds}) bit for bit without reading or parsing the
+// file again, so that a frame costs the walk of the nodes, skinning and morphing, not the
+// file. Empty (`!poser`) for a scene without animations.
+class ScenePoser {
+ public:
+  ScenePoser() = default;
+  explicit operator bool() const { return file_ != nullptr; }
+  // Throws rt2::Error as load_scene does; prints no warnings (the first load printed them).
+  Scene at(double seconds) const;
+
+ private:
+  friend Scene load_scene(const std::string&, const AssetPolicy&, const ScenePose&, ScenePoser*);
+  std::string path_;
+  AssetPolicy policy_;
+  std::string animation_;
+  std::shared_ptr<io::ParsedGltf> file_;
+};
+
+// load_scene, and for an animated scene a poser of it in `*poser` (else an empty one).
+Scene load_scene(const std::string& path, const AssetPolicy& policy, const ScenePose& pose,
+                 ScenePoser* poser);
 
 // Loads a TOML scene file (scenes/FORMAT.md). Mesh paths are relative to its folder.
 Scene load_toml_scene(const std::string& path, const AssetPolicy& policy = {});

@@ -179,23 +179,30 @@ void Scene::validate() const {
     check(std::fabs(float(dot(planes[i].n, planes[i].n)) - 1.0f) < 1e-3f, at + "normal must be unit length");
     check(plane_materials[i] < n_mat, at + "material index out of range");
   }
+  // Messages are made only for a failed check: a scene may have millions of elements.
   const auto check_mesh = [&](const Mesh& m) {
-    check(m.face_materials.size() == m.faces.size(), "mesh '" + m.name + "': one material per face");
-    check(m.normals.empty() || m.normals.size() == m.positions.size(),
-          "mesh '" + m.name + "': normals must match positions");
-    check(m.texcoords.empty() || m.texcoords.size() == m.positions.size(),
-          "mesh '" + m.name + "': texture coordinates must match positions");
-    for (const auto& uv : m.texcoords)
-      check(std::isfinite(uv[0]) && std::isfinite(uv[1]),
-            "mesh '" + m.name + "': non-finite texture coordinate");
-    for (const vec4& p : m.positions) check(finite(p), "mesh '" + m.name + "': non-finite vertex");
-    for (const vec4& n : m.normals)
-      check(finite(n) && std::fabs(float(dot(n, n)) - 1.0f) < 1e-3f,
-            "mesh '" + m.name + "': vertex normals must be finite and unit length");
-    for (const auto& f : m.faces)
-      check(f[0] < m.positions.size() && f[1] < m.positions.size() && f[2] < m.positions.size(),
-            "mesh '" + m.name + "': face index out of range");
-    for (auto mi : m.face_materials) check(mi < n_mat, "mesh '" + m.name + "': material index out of range");
+    const auto fail_unless = [&](bool ok, const char* what) {
+      if (!ok) throw Error("mesh '" + m.name + "': " + what);
+    };
+    const auto all = [](const auto& items, auto&& ok) {
+      return std::all_of(items.begin(), items.end(), ok);
+    };
+    fail_unless(m.face_materials.size() == m.faces.size(), "one material per face");
+    fail_unless(m.normals.empty() || m.normals.size() == m.positions.size(),
+                "normals must match positions");
+    fail_unless(m.texcoords.empty() || m.texcoords.size() == m.positions.size(),
+                "texture coordinates must match positions");
+    fail_unless(all(m.texcoords, [](const auto& uv) { return std::isfinite(uv[0]) && std::isfinite(uv[1]); }),
+                "non-finite texture coordinate");
+    fail_unless(all(m.positions, [](const vec4& p) { return finite(p); }), "non-finite vertex");
+    fail_unless(all(m.normals,
+                    [](const vec4& n) { return finite(n) && std::fabs(float(dot(n, n)) - 1.0f) < 1e-3f; }),
+                "vertex normals must be finite and unit length");
+    const std::size_t n_pos = m.positions.size();
+    fail_unless(all(m.faces, [&](const auto& f) { return f[0] < n_pos && f[1] < n_pos && f[2] < n_pos; }),
+                "face index out of range");
+    fail_unless(all(m.face_materials, [&](auto mi) { return mi < n_mat; }),
+                "material index out of range");
   };
   for (const Mesh& m : meshes) check_mesh(m);
   for (const Mesh& m : instanced_meshes) {
@@ -207,14 +214,16 @@ void Scene::validate() const {
     for (const Mesh& m : instanced_meshes) areas.push_back(area_range(m));
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const Instance& in = instances[i];
-    const std::string at = "instance " + std::to_string(i) + ": ";
-    check(in.mesh < instanced_meshes.size(), at + "mesh index out of range");
-    check(in.material == kMeshMaterials || in.material < n_mat, at + "material index out of range");
-    check(in.to_world.finite(), at + "the transform must be finite");
-    check(std::isnormal(in.to_world.determinant()) && in.to_world.inverse().finite(),
-          at + "the transform must be invertible");
-    check(areas_fit_float(areas[in.mesh], in.to_world),
-          at + "the transform makes its triangles too large or too small for float arithmetic");
+    const auto fail_unless = [&](bool ok, const char* what) {
+      if (!ok) throw Error("instance " + std::to_string(i) + ": " + what);
+    };
+    fail_unless(in.mesh < instanced_meshes.size(), "mesh index out of range");
+    fail_unless(in.material == kMeshMaterials || in.material < n_mat, "material index out of range");
+    fail_unless(in.to_world.finite(), "the transform must be finite");
+    fail_unless(std::isnormal(in.to_world.determinant()) && in.to_world.inverse().finite(),
+                "the transform must be invertible");
+    fail_unless(areas_fit_float(areas[in.mesh], in.to_world),
+                "the transform makes its triangles too large or too small for float arithmetic");
   }
 }
 

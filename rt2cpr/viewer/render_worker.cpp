@@ -21,11 +21,14 @@ bool same_point(const rt2::vec4& a, const rt2::vec4& b) {
 
 }  // namespace
 
-RenderWorker::RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown)
+RenderWorker::RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown,
+                           rt2::ScenePoser poser)
     : base_(std::move(scene)),
       posed_seconds_(options.pose.seconds),
+      poser_(std::move(poser)),
       options_(options),
       shown_cb_(std::move(shown)) {
+  if (base_.animation >= 0 && !poser_) load_scene(options_, &poser_);
   ViewRequest first;
   first.camera = base_.camera;
   first.seconds = options.pose.seconds;
@@ -67,12 +70,7 @@ std::optional<RenderWorker::Failure> RenderWorker::take_error() {
 void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
   const bool time_changed = base_.animation >= 0 && r.seconds != posed_seconds_;
   std::optional<rt2::Scene> posed;  // the scene at the request's time, once it is placed
-  if (time_changed) {
-    Options at = options_;
-    at.pose.seconds = r.seconds;
-    const rt2::io::WarningsOff quiet;  // the first load warned
-    posed = load_scene(at);
-  }
+  if (time_changed) posed = load_scene_at(options_, poser_, r.seconds);
   const bool lights_changed = r.lights != compiled_lights_;
   if (compiled_ && !lights_changed && !time_changed &&
       (!at_camera || same_point(centre_, r.camera.position())))
@@ -86,8 +84,7 @@ void RenderWorker::compile_for(const ViewRequest& r, bool at_camera) {
   const rt2::vec4 centre = scene.camera.position();
   try {
     if (compiled_ && !at_camera && !lights_changed) {
-      scene.validate();
-      rt2::recenter_on_camera(scene);
+      rt2::recenter_on_camera(scene);  // place validates it
       compiled_->place(scene, options_.bvh, options_.isa, rt2::same_topology(base_, scene));
     } else {
       compiled_ = std::make_unique<rt2::CompiledScene>(compile_at_camera(scene, options_));

@@ -24,6 +24,7 @@
 #include "rt2/render/compiled_scene.h"
 #include "rt2/image/film.h"
 #include "rt2/image/image.h"
+#include "rt2/io/scene_io.h"
 #include "rt2/render/renderer.h"
 #include "rt2/render/schedule.h"
 #include "rt2cpr/options.h"
@@ -64,10 +65,12 @@ class RenderWorker {
   // instruction set, the light range and the display mapping. Compiles the scene with
   // options.lights at its camera before the thread starts, so that a scene that cannot be
   // rendered throws rt2::Error here. A request at another time poses an animated scene
-  // again: loaded at that time, placed (CompiledScene::place) for a moving frame, compiled
-  // for a still. `shown` is called from the worker's thread after every
-  // finished image (to wake the window).
-  RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown);
+  // again: posed at that time by `poser` (load_scene's; empty: the worker loads the file
+  // once more for one), placed (CompiledScene::place) for a moving frame, compiled for a
+  // still. `shown` is called from the worker's thread after every finished image (to wake
+  // the window).
+  RenderWorker(rt2::Scene scene, const Options& options, std::function<void()> shown,
+               rt2::ScenePoser poser = {});
   ~RenderWorker();  // drops the pass under way and joins the thread
   RenderWorker(const RenderWorker&) = delete;
   RenderWorker& operator=(const RenderWorker&) = delete;
@@ -92,6 +95,7 @@ class RenderWorker {
 
   rt2::Scene base_;  // the options' scene, posed at posed_seconds_ (owned by the worker thread)
   double posed_seconds_;
+  rt2::ScenePoser poser_;  // of base_'s file, when it moves
   const Options options_;
   const std::function<void()> shown_cb_;
 

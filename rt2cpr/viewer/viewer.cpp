@@ -56,10 +56,10 @@ std::string next_screenshot_name() {
 
 class Viewer {
  public:
-  // `scene`: the options' scene (rt2cpr/scene_setup.h load_scene). Compiles it before the
+  // `scene`: the options' scene and `poser` its poser (rt2cpr/scene_setup.h load_scene). Compiles it before the
   // window opens, so that a scene that cannot be rendered is one error line and no window.
-  Viewer(const Options& o, rt2::Scene scene, std::optional<ScriptPlayer> script,
-         SDL_Keycode screenshot_key)
+  Viewer(const Options& o, rt2::Scene scene, rt2::ScenePoser poser,
+         std::optional<ScriptPlayer> script, SDL_Keycode screenshot_key)
       : o_(o),
         script_(std::move(script)),
         screenshot_key_(screenshot_key),
@@ -76,11 +76,14 @@ class Viewer {
     controls_.lights = o.lights;
     // The worker pushes an event when an image is ready; it renders only when asked, after
     // the window exists.
-    worker_.emplace(std::move(scene), o, [this] {
-      SDL_Event e{};
-      e.type = window_->frame_event();
-      SDL_PushEvent(&e);
-    });
+    worker_.emplace(
+        std::move(scene), o,
+        [this] {
+          SDL_Event e{};
+          e.type = window_->frame_event();
+          SDL_PushEvent(&e);
+        },
+        std::move(poser));
     window_.emplace(o.render.width, o.render.height,
                     "rt2 — " + (o.scene.empty() ? std::string("built-in scene") : o.scene));
     t0_ = Clock::now();
@@ -433,7 +436,9 @@ void run_interactive(const Options& o) {
   if (!o.output.empty()) rt2::check_writable_image(o.output);
   if (!o.interactive.frame_log.empty()) rt2::io::check_output_path(o.interactive.frame_log);
   rt2::check_image_fits(o.render.width, o.render.height);
-  Viewer(o, load_scene(o), std::move(script), key).run();
+  rt2::ScenePoser poser;
+  rt2::Scene scene = load_scene(o, &poser);
+  Viewer(o, std::move(scene), std::move(poser), std::move(script), key).run();
 }
 
 }  // namespace rt2cpr::viewer
