@@ -1443,14 +1443,14 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
                  1);
-    corners.reserve(idx.count);
-    for (std::size_t i = 0; i < idx.count; ++i) {
+    corners.resize(idx.count);
+    for_each_index(idx.count, [&](std::size_t i) {
       const double v = idx.get(i, 0);
       if (!(v < double(pos.count)))
         fail(at + ": index " + std::to_string(i) + " is " + fmt(v) + ", but there are only " +
              std::to_string(pos.count) + " vertices");
-      corners.push_back(std::uint32_t(v));
-    }
+      corners[i] = std::uint32_t(v);
+    });
   } else {
     corners.resize(pos.count);
     for (std::size_t i = 0; i < pos.count; ++i) corners[i] = std::uint32_t(i);
@@ -1461,25 +1461,27 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     fail("its mesh instances hold " + std::to_string(triangles_) + " triangles or more, which need "
          "about " + memory_size(triangles_ * kBytesPerTriangle) + "; " + memory_size(memory_) +
          " of memory is available");
-  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  if (mode == TINYGLTF_MODE_TRIANGLES && n_corners % 3 != 0)
+    warn_once("leftover", at + ": " + std::to_string(n_corners) +
+                              " corners is not a multiple of 3; the last are ignored");
+  mesh.faces.resize(mode == TINYGLTF_MODE_TRIANGLES ? n_corners / 3
+                    : n_corners > 2                 ? n_corners - 2
+                                                    : 0);
+  for_each_index(mesh.faces.size(), [&](std::size_t k) {
+    // Face k of a list, a strip (every other one turned to keep the winding) or a fan.
+    std::uint32_t a, b, c;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      a = corners[3 * k], b = corners[3 * k + 1], c = corners[3 * k + 2];
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      a = corners[k + (k % 2)], b = corners[k + 1 - (k % 2)], c = corners[k + 2];
+    } else {
+      a = corners[0], b = corners[k + 1], c = corners[k + 2];
+    }
     // A mirroring transform (det < 0) turns the winding; glTF says to turn it back. A skinned
     // triangle is turned back when two or three of its corners' matrices mirror.
     if (joints ? mirrored[a] + mirrored[b] + mirrored[c] >= 2 : det < 0) std::swap(b, c);
-    mesh.faces.push_back({a, b, c});
-  };
-  const std::size_t n = corners.size();
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    if (n % 3 != 0)
-      warn_once("leftover", at + ": " + std::to_string(n) +
-                                " corners is not a multiple of 3; the last are ignored");
-    for (std::size_t i = 0; i + 2 < n; i += 3) add(corners[i], corners[i + 1], corners[i + 2]);
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-    for (std::size_t i = 0; i + 2 < n; ++i)
-      i % 2 ? add(corners[i + 1], corners[i], corners[i + 2])
-            : add(corners[i], corners[i + 1], corners[i + 2]);
-  } else {
-    for (std::size_t i = 1; i + 1 < n; ++i) add(corners[0], corners[i], corners[i + 1]);
-  }
+    mesh.faces[k] = {a, b, c};
+  });
   mesh.face_materials.assign(mesh.faces.size(), scene_material);
   scene_.degenerate_triangles += mesh.drop_degenerate();
   if (into)

@@ -8,6 +8,12 @@
 //
 //   build/release/bin/bench_refit --obj data/meshes/refined_elephant-x16.obj
 //       [--threads 1,2] [--reps 7] [--amounts 0.02,0.1,0.3,1] [--rays 200000]
+//
+// With --animated, a frame of an animated glTF instead: posing it (ScenePoser::at: the
+// nodes, skinning and morphing) and refitting its trees (Accel::refit), per thread count,
+// over `--reps` frames 1/30 s apart (scripts/make-animated-scene makes such files).
+//
+//   build/release/bin/bench_refit --animated anim.gltf [--threads 1,2] [--reps 60]
 #include <omp.h>
 
 #include <algorithm>
@@ -83,16 +89,57 @@ void print(const char* what, const std::string& keys, const std::vector<double>&
   std::fflush(stdout);
 }
 
+// The --animated measurement.
+int animated(const std::string& file, const std::vector<double>& threads, int reps) {
+  rt2::ScenePoser poser;
+  rt2::Scene scene;
+  try {
+    scene = rt2::load_scene(file, {}, {}, &poser);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_refit: %s\n", e.what());
+    return 1;
+  }
+  if (!poser) {
+    std::fprintf(stderr, "bench_refit: %s has no animation\n", file.c_str());
+    return 1;
+  }
+  std::printf("animated=%s tris=%zu instances=%zu reps=%d max_threads=%d\n", file.c_str(),
+              scene.triangle_count(), scene.instances.size(), reps, omp_get_max_threads());
+  const rt2::BvhConfig config;
+  for (const double t : threads) {
+    omp_set_num_threads(int(t));
+    rt2::Accel acc = rt2::Accel::build(scene, config);
+    std::vector<double> pose, refit, both;
+    double growth = 1.0;
+    for (int r = 1; r <= reps; ++r) {
+      auto t0 = Clock::now();
+      const rt2::Scene posed = poser.at(r / 30.0);
+      pose.push_back(ms_since(t0));
+      t0 = Clock::now();
+      growth = std::max(growth, acc.refit(posed, config, int(t)));
+      refit.push_back(ms_since(t0));
+      both.push_back(pose.back() + refit.back());
+    }
+    const std::string keys = "threads=" + std::to_string(int(t));
+    print("pose", keys, pose);
+    print("refit", keys, refit);
+    print("pose_and_refit", keys, both);
+    std::printf("max_cost_growth threads=%d growth=%.3f\n", int(t), growth);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string obj;
+  std::string obj, animated_file;
   std::vector<double> threads = {1, 2}, amounts = {0.02, 0.1, 0.3, 1.0};
   int reps = 7;
   std::size_t ray_count = 200000;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--obj") obj = argv[i + 1];
+    else if (a == "--animated") animated_file = argv[i + 1];
     else if (a == "--threads") threads = list(argv[i + 1]);
     else if (a == "--amounts") amounts = list(argv[i + 1]);
     else if (a == "--reps") reps = std::max(1, std::atoi(argv[i + 1]));
@@ -102,8 +149,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (!animated_file.empty()) return animated(animated_file, threads, reps);
   if (obj.empty()) {
-    std::fprintf(stderr, "bench_refit: --obj MESH.obj is required\n");
+    std::fprintf(stderr, "bench_refit: --obj MESH.obj or --animated FILE.gltf is required\n");
     return 2;
   }
   rt2::Scene scene;

@@ -170,15 +170,20 @@ TEST(Gltf, ReadsIndicesOfEveryComponentType) {
   }
 }
 
-TEST(Gltf, TriangleStripsAndFansBecomeTriangles) {
+// glTF 2.0 3.7.2.1: strip triangle i is (p_i, p_i+1, p_i+2), every odd one turned to keep
+// the winding; fan triangle i is (p_0, p_i+1, p_i+2).
+TEST(Gltf, TriangleStripsAndFansBecomeTrianglesInTheirWinding) {
+  using Face = std::array<std::uint32_t, 3>;
   for (const int mode : {5, 6}) {
     const test::TempDir dir("gltf");
     GltfFile f;
-    f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3", 3);
+    f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0}, "VEC3", 3);
     const std::string rest = R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":)" +
                              std::to_string(mode) + "}]}]";
     const Scene scene = load_scene(dir.write("strip.gltf", f.json(rest)));
-    EXPECT_EQ(scene.meshes.at(0).faces.size(), 2u) << "mode " << mode;
+    const std::vector<Face> want = mode == 5 ? std::vector<Face>{{0, 1, 2}, {2, 1, 3}, {2, 3, 4}}
+                                             : std::vector<Face>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
+    EXPECT_EQ(scene.meshes.at(0).faces, want) << "mode " << mode;
   }
 }
 
