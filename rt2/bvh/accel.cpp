@@ -249,7 +249,14 @@ void Accel::place_instances(const std::vector<Instance>& scene_instances, int th
   });
   // Rebuilt every frame: a linear BVH, one instance a leaf (entering one costs a transform
   // and a walk of its own).
-  build_linear_bvh(boxes, team, instance_bvh);
+  if (n <= kSahInstances) {
+    BvhConfig sah;
+    sah.max_leaf_size = 1;
+    sah.sah_block = 1;
+    instance_bvh = build_bvh(boxes, sah);
+  } else {
+    build_linear_bvh(boxes, team, instance_bvh);
+  }
   instances.resize(n);
 #pragma omp parallel for num_threads(team) schedule(static)
   for (std::size_t k = 0; k < n; ++k) {

@@ -83,46 +83,84 @@ MLIB_INLINE bool any_instanced(const Accel& acc, const Ray& ray, float t_min, fl
   return stopped;
 }
 
+// The lanes of `lanes` of pr whose rays enter box `n` within (t_min, t_max[l]), and in
+// `nearest` the smallest of their entry distances: node_entry's arithmetic (so the same
+// lanes as each ray's own test), kRayLanes rays at a time; `inv` holds the reciprocals of
+// the rays' directions, as RayPre computes them.
+MLIB_INLINE PacketMask box_lanes(const BvhNode& n, const PacketRays<kWidth>& pr,
+                                 const float (*inv)[kPacketSize], PacketMask lanes, float t_min,
+                                 const float* t_max, float& nearest) {
+  using R = mlib::vfloat<kRayLanes>;
+  const R minus_inf = R::broadcast(-kInfinity), inf = R::broadcast(kInfinity);
+  R lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = R::broadcast(n.lo[a]), hi[a] = R::broadcast(n.hi[a]);
+  PacketMask in = 0;
+  R entry_min = inf;
+  for (int c = 0; c < kPacketSize; c += kRayLanes) {
+    if (!(lanes >> c & PacketRays<kWidth>::kChunk)) continue;
+    R near = R::broadcast(t_min), far = inf;
+    for (int a = 0; a < 3; ++a) {
+      const R o = R::load(pr.org[a] + c), i = R::load(inv[a] + c);
+      const R t0 = (lo[a] - o) * i, t1 = (hi[a] - o) * i;
+      near = max(near, min(max(t0, minus_inf), max(t1, minus_inf)));
+      far = min(far, max(min(t0, inf), min(t1, inf)));
+    }
+    far = min(far, R::loadu(t_max + c)) * R::broadcast(kSlabPad);
+    const auto enters = near <= far;
+    in |= PacketMask(mlib::bits(enters)) << c;
+    entry_min = min(entry_min, select(enters, near, inf));
+  }
+  alignas(64) float x[kRayLanes];
+  mlib::reduce_min(entry_min).store(x);
+  nearest = x[0];
+  return in & lanes;
+}
+
 // Calls visit(i, entering) for each instance i whose box some ray of `lanes` (of pr) enters
-// within (t_min, t_max[l]), `entering` those rays; every instance with all of `lanes` when
+// within (t_min, t_max), `entering` those rays; every instance with all of `lanes` when
 // the top level is one leaf (the instances' trees test their own boxes). t_max may shrink
-// between visits (it is read at each box).
-template <class Visit>
+// between visits (each node's children are tested against it). Nearer first: of two
+// children, the one with the smaller entry distance is walked first.
+template <bool NearerFirst, class Visit>
 inline void instances_entered(const Accel& acc, const PacketRays<kWidth>& pr, PacketMask lanes,
                               float t_min, const float* t_max, Visit&& visit) {
+  using R = mlib::vfloat<kRayLanes>;
   const BvhNode* nodes = acc.instance_bvh.nodes.data();
   if (nodes[0].is_leaf()) {
     for (std::uint32_t i = nodes[0].offset; i < nodes[0].offset + nodes[0].count; ++i)
       visit(i, lanes);
     return;
   }
-  RayPre pre[kPacketSize];
-  for (PacketMask m = lanes; m; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    pre[l] = RayPre(pr.ray(l));
-  }
+  alignas(64) float inv[3][kPacketSize];
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < kPacketSize; c += kRayLanes)
+      (R::broadcast(1.0f) / R::load(pr.dir[a] + c)).store(inv[a] + c);
   struct Entry {
     std::uint32_t node;
     PacketMask lanes;
   };
   Entry stack[kMaxBvhDepth + 2];
   int sp = 0;
-  stack[sp++] = {0, lanes};
+  float t_root;
+  const PacketMask root = box_lanes(nodes[0], pr, inv, lanes, t_min, t_max, t_root);
+  if (root) stack[sp++] = {0, root};
   while (sp > 0) {
     const Entry e = stack[--sp];
     const BvhNode& n = nodes[e.node];
-    PacketMask in = 0;
-    for (PacketMask m = e.lanes; m; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      if (node_entry(n, pre[l], t_min, t_max[l]) != kInfinity) in |= PacketMask(1) << l;
-    }
-    if (!in) continue;
     if (n.is_leaf()) {
-      for (std::uint32_t i = n.offset; i < n.offset + n.count; ++i) visit(i, in);
+      for (std::uint32_t i = n.offset; i < n.offset + n.count; ++i) visit(i, e.lanes);
       continue;
     }
-    stack[sp++] = {n.offset, in};
-    stack[sp++] = {e.node + 1, in};
+    std::uint32_t a = e.node + 1, b = n.offset;
+    float ta, tb;
+    PacketMask in_a = box_lanes(nodes[a], pr, inv, e.lanes, t_min, t_max, ta);
+    PacketMask in_b = box_lanes(nodes[b], pr, inv, e.lanes, t_min, t_max, tb);
+    if (NearerFirst && tb < ta) {
+      std::swap(a, b);
+      std::swap(in_a, in_b);
+    }
+    if (in_b) stack[sp++] = {b, in_b};
+    if (in_a) stack[sp++] = {a, in_a};  // popped next
   }
 }
 
@@ -181,7 +219,7 @@ inline void closest_instanced_packet(const Accel& acc, const PacketRays<kWidth>&
   }
   alignas(64) float t_bound[kPacketSize];
   for (int l = 0; l < kPacketSize; ++l) t_bound[l] = lanes >> l & 1 ? hits[l].t : 0.0f;
-  instances_entered(acc, pr, lanes, t_min, t_bound, [&](std::uint32_t i, PacketMask entering) {
+  instances_entered<true>(acc, pr, lanes, t_min, t_bound, [&](std::uint32_t i, PacketMask entering) {
     const TracedInstance& in = acc.instances[i];
     const WideBvh<kWidth>& tree = acc.mesh_tree<kWidth>(in.mesh);
     PacketRays<kWidth> lp;
@@ -234,7 +272,7 @@ inline PacketMask any_instanced_packet(const Accel& acc, const PacketRays<kWidth
     }
     return blocked;
   }
-  instances_entered(acc, pr, lanes, t_min, t_max, [&](std::uint32_t i, PacketMask entering) {
+  instances_entered<false>(acc, pr, lanes, t_min, t_max, [&](std::uint32_t i, PacketMask entering) {
     entering &= ~blocked;
     if (!entering) return;
     const TracedInstance& in = acc.instances[i];

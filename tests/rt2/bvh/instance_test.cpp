@@ -57,11 +57,11 @@ Mesh placed(const Mesh& m, const Affine& a) {
 struct Pair {
   Scene instanced, flattened;
 };
-Pair instanced_soups(int count, unsigned seed, unsigned mesh_seed = 1) {
+Pair instanced_soups(int count, unsigned seed, unsigned mesh_seed = 1, std::size_t soup_size = 400) {
   Pair p;
   p.instanced = test::geometry_scene({});
   p.flattened = test::geometry_scene({});
-  const Mesh soup = test::random_soup(400, 0.3f, mesh_seed);
+  const Mesh soup = test::random_soup(soup_size, 0.3f, mesh_seed);
   p.instanced.instanced_meshes.push_back(soup);
   std::mt19937 rng(seed);
   for (int i = 0; i < count; ++i) {
@@ -235,6 +235,36 @@ TEST(Instances, ARebuiltTopLevelAnswersAsAFreshBuildBitForBit) {
   for (std::size_t i = 0; i < rays.size(); ++i)
     ASSERT_TRUE(test::bitwise_same(trace_closest(moved, rays[i]), trace_closest(fresh, rays[i])))
         << i;
+}
+
+// Past Accel::kSahInstances the top level is a linear BVH: single rays and packets through
+// it still hit where the flattened copies' tree does, and packets as single rays.
+TEST(Instances, BothTopLevelBuildsHitWhereTheFlattenedCopiesDo) {
+  for (const int count : {int(Accel::kSahInstances) / 8, int(Accel::kSahInstances) + 300}) {
+    const Pair p = instanced_soups(count, 8, 2, 6);
+    const Accel inst = Accel::build(p.instanced, BvhConfig{});
+    const Accel flat = Accel::build(p.flattened, BvhConfig{});
+    std::vector<Ray> rays = test::random_rays(flat, 4096 / test::kSampleScale, 3, 8.0f);
+    rays.resize(rays.size() / 16 * 16);
+    std::vector<float> t_max(rays.size(), kInfinity);
+    std::vector<std::uint32_t> begin;
+    for (std::uint32_t i = 0; i <= rays.size(); i += 16) begin.push_back(i);
+    std::vector<Hit> single(rays.size()), packed(rays.size());
+    trace_closest(inst, {}, rays.data(), t_max.data(), rays.size(), single.data());
+    trace_closest_packets(inst, {}, rays.data(), t_max.data(), begin.data(), begin.size() - 1,
+                          packed.data(), nullptr);
+    std::size_t hits = 0, disagree = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      ASSERT_TRUE(test::bitwise_same(single[i], packed[i])) << count << " ray " << i;
+      const Hit o = trace_closest(flat, rays[i]);
+      hits += o.found();
+      if (single[i].found() != o.found() ||
+          (o.found() && std::fabs(single[i].t - o.t) > 1e-4f * (1.0f + o.t)))
+        ++disagree;
+    }
+    EXPECT_GT(hits, rays.size() / 3) << count;
+    EXPECT_LE(disagree, rays.size() / 500) << count;
+  }
 }
 
 TEST(Instances, TheInstanceMaterialReplacesTheMeshMaterials) {
