@@ -240,15 +240,32 @@ void Accel::place_instances(const std::vector<Instance>& scene_instances, int th
   thread_local std::vector<Aabb> scratch;
   std::vector<Aabb>& boxes = scratch;
   boxes.resize(n);
+  instances.resize(n);
+  // In the scene's order: each instance read and its record written once, in sequence.
   with_bvh_width(isa, [&](auto width) {
     constexpr int N = decltype(width)::value;
 #pragma omp parallel for num_threads(team) schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-      boxes[i] = world_box(mesh_tree<N>(scene_instances[i].mesh).bounds,
-                           scene_instances[i].to_world);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Instance& in = scene_instances[i];
+      boxes[i] = world_box(mesh_tree<N>(in.mesh).bounds, in.to_world);
+      TracedInstance& r = instances[i];
+      const Affine to_object = in.to_world.inverse();
+      r.to_world = columns_of(in.to_world);
+      r.to_object = columns_of(to_object);
+      Affine normals;  // A^-T: the transpose of the inverse's linear part
+      for (std::size_t a = 0; a < 3; ++a) {
+        for (std::size_t b = 0; b < 3; ++b) normals.m[a][b] = to_object.m[b][a];
+        normals.m[a][3] = 0.0;
+      }
+      r.normals = columns_of(normals);
+      r.mesh = in.mesh;
+      r.material = in.material;
+      r.identity = in.to_world.is_identity();
+      r.mirror = in.to_world.determinant() < 0.0;
+    }
   });
-  // Rebuilt every frame: a linear BVH, one instance a leaf (entering one costs a transform
-  // and a walk of its own).
+  // Rebuilt every frame, one instance a leaf (entering one costs a transform and a walk of
+  // its own): binned SAH up to kSahInstances, a linear BVH above.
   if (n <= kSahInstances) {
     BvhConfig sah;
     sah.max_leaf_size = 1;
@@ -256,27 +273,6 @@ void Accel::place_instances(const std::vector<Instance>& scene_instances, int th
     instance_bvh = build_bvh(boxes, sah);
   } else {
     build_linear_bvh(boxes, team, instance_bvh);
-  }
-  instances.resize(n);
-#pragma omp parallel for num_threads(team) schedule(static)
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t i = instance_bvh.order[k];
-    const Instance& in = scene_instances[i];
-    TracedInstance& r = instances[k];
-    const Affine to_object = in.to_world.inverse();
-    r.to_world = columns_of(in.to_world);
-    r.to_object = columns_of(to_object);
-    Affine normals;  // A^-T: the transpose of the inverse's linear part
-    for (std::size_t a = 0; a < 3; ++a) {
-      for (std::size_t b = 0; b < 3; ++b) normals.m[a][b] = to_object.m[b][a];
-      normals.m[a][3] = 0.0;
-    }
-    r.normals = columns_of(normals);
-    r.mesh = in.mesh;
-    r.material = in.material;
-    r.source = i;
-    r.identity = in.to_world.is_identity();
-    r.mirror = in.to_world.determinant() < 0.0;
   }
 }
 

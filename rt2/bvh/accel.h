@@ -42,7 +42,6 @@ struct TracedInstance {
   AffineColumns normals;    // shading normals to the world: A^-T (c[3] = 0)
   std::uint32_t mesh = 0;   // its tree: Accel::mesh_trees
   std::uint32_t material = kMeshMaterials;  // or every face's material
-  std::uint32_t source = 0;  // its index in Scene::instances
   bool identity = false;     // rays enter unchanged
   bool mirror = false;       // determinant < 0: geometric normals turned back (instance.h)
 };
@@ -77,9 +76,10 @@ struct Accel {
   std::vector<Plane> planes;
   std::vector<std::uint32_t> plane_materials;
 
-  // Instances: per instanced mesh its tree (the ISA's width), and the instances in the leaf
-  // order of a binary tree over their world boxes: leaf [first, first + count) holds
-  // instances[first ...]. A hit inside one names it (Hit::instance).
+  // Instances: per instanced mesh its tree (the ISA's width), the instances in the scene's
+  // order (Scene::instances), and a binary tree over their world boxes whose leaf
+  // [first, first + count) holds instances[instance_bvh.order[first ...]]. A hit inside one
+  // names it by its index in the scene (Hit::instance), whatever the tree.
   MeshTrees mesh_trees;
   Bvh instance_bvh;
   std::vector<TracedInstance> instances;

@@ -35,8 +35,10 @@ template <bool Watertight>
 MLIB_INLINE void closest_instanced(const Accel& acc, const Ray& ray, float t_min, Hit& h,
                                    TraversalCounts* counts) {
   if (acc.instances.empty()) return;
+  const std::uint32_t* order = acc.instance_bvh.order.data();
   const auto leaf = [&](std::uint32_t first, std::uint32_t count, float& t_max) {
-    for (std::uint32_t i = first; i < first + count; ++i) {
+    for (std::uint32_t k = first; k < first + count; ++k) {
+      const std::uint32_t i = order[k];
       const TracedInstance& in = acc.instances[i];
       const Ray local = ray_in(in, ray);
       if (!finite_ray(local)) continue;
@@ -62,8 +64,10 @@ MLIB_INLINE bool any_instanced(const Accel& acc, const Ray& ray, float t_min, fl
                                Cross&& cross, TraversalCounts* counts) {
   if (acc.instances.empty()) return false;
   bool stopped = false;
+  const std::uint32_t* order = acc.instance_bvh.order.data();
   const auto leaf = [&](std::uint32_t first, std::uint32_t count, float&) {
-    for (std::uint32_t i = first; i < first + count && !stopped; ++i) {
+    for (std::uint32_t k = first; k < first + count && !stopped; ++k) {
+      const std::uint32_t i = order[k];
       const TracedInstance& in = acc.instances[i];
       const Ray local = ray_in(in, ray);
       if (!finite_ray(local)) continue;
@@ -126,9 +130,10 @@ inline void instances_entered(const Accel& acc, const PacketRays<kWidth>& pr, Pa
                               float t_min, const float* t_max, Visit&& visit) {
   using R = mlib::vfloat<kRayLanes>;
   const BvhNode* nodes = acc.instance_bvh.nodes.data();
+  const std::uint32_t* order = acc.instance_bvh.order.data();
   if (nodes[0].is_leaf()) {
-    for (std::uint32_t i = nodes[0].offset; i < nodes[0].offset + nodes[0].count; ++i)
-      visit(i, lanes);
+    for (std::uint32_t k = nodes[0].offset; k < nodes[0].offset + nodes[0].count; ++k)
+      visit(order[k], lanes);
     return;
   }
   alignas(64) float inv[3][kPacketSize];
@@ -148,7 +153,7 @@ inline void instances_entered(const Accel& acc, const PacketRays<kWidth>& pr, Pa
     const Entry e = stack[--sp];
     const BvhNode& n = nodes[e.node];
     if (n.is_leaf()) {
-      for (std::uint32_t i = n.offset; i < n.offset + n.count; ++i) visit(i, e.lanes);
+      for (std::uint32_t k = n.offset; k < n.offset + n.count; ++k) visit(order[k], e.lanes);
       continue;
     }
     std::uint32_t a = e.node + 1, b = n.offset;

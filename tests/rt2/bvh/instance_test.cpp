@@ -186,10 +186,7 @@ TEST(Instances, PacketsThroughInstancesEqualSingleRaysBitForBit) {
         begin.push_back(std::uint32_t(rays.size()));
       }
     const std::size_t n = rays.size(), packets = begin.size() - 1;
-    std::uint32_t twins[2] = {0, 0};  // where sources 0 and 25 are in the top tree's order
-    for (std::uint32_t k = 0; k < acc.instances.size(); ++k)
-      if (acc.instances[k].source == 0 || acc.instances[k].source == 25)
-        twins[acc.instances[k].source == 25] = k;
+    const std::uint32_t twins[2] = {0, 25};
     for (bool watertight : {false, true}) {
       const TraceOptions opt{watertight};
       std::vector<Hit> single(n), packed(n);
@@ -282,11 +279,12 @@ TEST(Instances, TheInstanceMaterialReplacesTheMeshMaterials) {
   const vec4 centroid =
       (m.positions[m.faces[0][0]] + m.positions[m.faces[0][1]] + m.positions[m.faces[0][2]]) *
       (1.0f / 3.0f);
-  for (const TracedInstance& in : acc.instances) {
-    const vec4 target = in.to_world.point(centroid);
+  for (std::uint32_t i = 0; i < acc.instances.size(); ++i) {
+    const vec4 target = acc.instances[i].to_world.point(centroid);
     const Hit h = trace_closest(acc, Ray(target - vec4(0.0f, 0.0f, 5.0f), vec4(0.0f, 0.0f, 1.0f)));
     ASSERT_TRUE(h.found());
-    EXPECT_EQ(acc.material_of(h.prim, h.instance), in.source == 1 ? r : 0u);
+    EXPECT_EQ(h.instance, i);
+    EXPECT_EQ(acc.material_of(h.prim, h.instance), i == 1 ? r : 0u);
   }
 }
 
