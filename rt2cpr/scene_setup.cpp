@@ -124,9 +124,8 @@ std::optional<RenderSetup::PoseTimes> RenderSetup::pose(const Options& o, int fr
   });
   const auto t0 = Clock::now();
   rt2::recenter_on_camera(next);  // place validates it
-  const bool refit = rt2::same_topology(scene, next);
+  compiled.place(next, o.bvh, o.isa, rt2::same_topology(scene, next));
   scene = std::move(next);
-  compiled.place(scene, o.bvh, o.isa, refit);
   t.placed = compiled.placed;
   renderer.set_camera(scene.camera);
   t.place_ms = ms_since(t0);

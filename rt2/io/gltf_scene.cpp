@@ -10,7 +10,9 @@
 // accessor 3 (POSITION): ...".
 #include "rt2/io/gltf_scene.h"
 
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -246,29 +248,31 @@ vec4 to_vec4(const Vec3d& v) { return vec4(float(v.x), float(v.y), float(v.z)); 
 template <class Each>
 void for_each_index(std::size_t n, Each&& each) {
   constexpr std::size_t kSerialBelow = 1u << 14;
-  if (n < kSerialBelow) {
-    for (std::size_t i = 0; i < n; ++i) each(i);
-    return;
-  }
-  std::size_t first = n;
-  std::exception_ptr error;
+#ifdef _OPENMP
+  if (n >= kSerialBelow) {
+    std::size_t first = n;
+    std::exception_ptr error;
 #pragma omp parallel
-  {
-    const auto t = std::size_t(omp_get_thread_num()), threads = std::size_t(omp_get_num_threads());
-    for (std::size_t i = n * t / threads, end = n * (t + 1) / threads; i < end; ++i) {
-      try {
-        each(i);
-      } catch (...) {
+    {
+      const auto t = std::size_t(omp_get_thread_num()), threads = std::size_t(omp_get_num_threads());
+      for (std::size_t i = n * t / threads, end = n * (t + 1) / threads; i < end; ++i) {
+        try {
+          each(i);
+        } catch (...) {
 #pragma omp critical(rt2_for_each_index)
-        if (i < first) {
-          first = i;
-          error = std::current_exception();
+          if (i < first) {
+            first = i;
+            error = std::current_exception();
+          }
+          break;
         }
-        break;
       }
     }
+    if (error) std::rethrow_exception(error);
+    return;
   }
-  if (error) std::rethrow_exception(error);
+#endif
+  for (std::size_t i = 0; i < n; ++i) each(i);
 }
 
 // ---- the loader ---------------------------------------------------------------------------
@@ -1364,18 +1368,26 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     return m;
   };
   const double det = determinant3(world);
+  // The NORMAL accessor, checked; a fault of it is reported after the vertices' own, as
+  // when normals were read after positions.
   std::optional<Accessor> nrm;
+  std::exception_ptr normal_error;
   if (const int n_index = attribute("NORMAL"); n_index >= 0) {
-    nrm = accessor(n_index, at + " NORMAL",
-                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                    TINYGLTF_COMPONENT_TYPE_SHORT},
-                   3);
-    if (nrm->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm->normalized)
-      fail(at + ": NORMAL accessor " + std::to_string(n_index) +
-           ": integer normals must be normalized");
-    if (nrm->count != pos.count)
-      fail(at + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " +
-           std::to_string(pos.count));
+    try {
+      nrm = accessor(n_index, at + " NORMAL",
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                      TINYGLTF_COMPONENT_TYPE_SHORT},
+                     3);
+      if (nrm->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !nrm->normalized)
+        fail(at + ": NORMAL accessor " + std::to_string(n_index) +
+             ": integer normals must be normalized");
+      if (nrm->count != pos.count)
+        fail(at + ": NORMAL has " + std::to_string(nrm->count) + " elements, POSITION " +
+             std::to_string(pos.count));
+    } catch (const Error&) {
+      normal_error = std::current_exception();
+      nrm.reset();
+    }
   }
 
   // Each vertex's position and normal (cofactor · sign(det) is the inverse transpose times
@@ -1407,6 +1419,7 @@ void GltfReader::add_primitive(int mesh_index, int prim_index, const Mat4& world
     else
       zero_normal[i] = 1;
   });
+  if (normal_error) std::rethrow_exception(normal_error);
   if (std::find(zero_normal.begin(), zero_normal.end(), 1) != zero_normal.end()) {
     // a zero normal, or a singular transform: flat shading
     mesh.normals.clear();

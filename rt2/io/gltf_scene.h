@@ -43,8 +43,9 @@ Scene read_gltf_scene(const std::string& path, const AssetPolicy& policy,
 
 // A glTF file parsed once and read at many poses: parse_gltf reads and parses `path` (the
 // file and its buffers; throws as read_gltf_scene does), and read_gltf_scene(file, ...)
-// returns what read_gltf_scene(path, ...) would, bit for bit, without touching the files
-// again (the first reading also keeps the checked animations and the still framing).
+// returns what read_gltf_scene(path, ...) would, bit for bit, without reading or parsing
+// the file and its buffers again (image files are only checked to exist; the first reading
+// also keeps the checked animations and the still framing).
 struct ParsedGltf;
 std::shared_ptr<ParsedGltf> parse_gltf(const std::string& path, const AssetPolicy& policy);
 Scene read_gltf_scene(ParsedGltf& file, const std::string& path, const AssetPolicy& policy,

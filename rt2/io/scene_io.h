@@ -33,8 +33,8 @@ struct ParsedGltf;
 
 // A scene that moves, kept as its file was parsed: at(seconds) returns
 // load_scene(path, policy, {animation, seconds}) bit for bit without reading or parsing the
-// file again, so that a frame costs the walk of the nodes, skinning and morphing, not the
-// file. Empty (`!poser`) for a scene without animations.
+// file and its buffers again, so that a frame costs the walk of the nodes, skinning and
+// morphing, not the file. Empty (`!poser`) for a scene without animations.
 class ScenePoser {
  public:
   ScenePoser() = default;

@@ -4,7 +4,9 @@
 // triangles. The ray is transformed, not renormalised: t stays the world's distance.
 #pragma once
 
+#include <bit>
 #include <cstdint>
+#include <utility>
 
 #include "rt2/kernel/kernel.h"
 
@@ -88,12 +90,12 @@ MLIB_INLINE bool any_instanced(const Accel& acc, const Ray& ray, float t_min, fl
 }
 
 // The lanes of `lanes` of pr whose rays enter box `n` within (t_min, t_max[l]), and in
-// `nearest` the smallest of their entry distances: node_entry's arithmetic (so the same
-// lanes as each ray's own test), kRayLanes rays at a time; `inv` holds the reciprocals of
-// the rays' directions, as RayPre computes them.
+// `*nearest` (when given) the smallest of their entry distances: node_entry's arithmetic
+// (so the same lanes as each ray's own test, t_min not NaN), kRayLanes rays at a time;
+// `inv` holds the reciprocals of the rays' directions, as RayPre computes them.
 MLIB_INLINE PacketMask box_lanes(const BvhNode& n, const PacketRays<kWidth>& pr,
                                  const float (*inv)[kPacketSize], PacketMask lanes, float t_min,
-                                 const float* t_max, float& nearest) {
+                                 const float* t_max, float* nearest) {
   using R = mlib::vfloat<kRayLanes>;
   const R minus_inf = R::broadcast(-kInfinity), inf = R::broadcast(kInfinity);
   R lo[3], hi[3];
@@ -110,14 +112,18 @@ MLIB_INLINE PacketMask box_lanes(const BvhNode& n, const PacketRays<kWidth>& pr,
       far = min(far, max(min(t0, inf), min(t1, inf)));
     }
     far = min(far, R::loadu(t_max + c)) * R::broadcast(kSlabPad);
-    const auto enters = near <= far;
+    // node_entry answers its entry distance, kInfinity for a miss: an entry at +inf is one
+    const auto active = R::bool_type::from_bits(unsigned(lanes >> c & PacketRays<kWidth>::kChunk));
+    const auto enters = (near <= far) & (near < inf) & active;
     in |= PacketMask(mlib::bits(enters)) << c;
-    entry_min = min(entry_min, select(enters, near, inf));
+    if (nearest) entry_min = min(entry_min, select(enters, near, inf));
   }
-  alignas(64) float x[kRayLanes];
-  mlib::reduce_min(entry_min).store(x);
-  nearest = x[0];
-  return in & lanes;
+  if (nearest) {
+    alignas(64) float x[kRayLanes];
+    mlib::reduce_min(entry_min).store(x);
+    *nearest = x[0];
+  }
+  return in;
 }
 
 // Calls visit(i, entering) for each instance i whose box some ray of `lanes` (of pr) enters
@@ -146,8 +152,7 @@ inline void instances_entered(const Accel& acc, const PacketRays<kWidth>& pr, Pa
   };
   Entry stack[kMaxBvhDepth + 2];
   int sp = 0;
-  float t_root;
-  const PacketMask root = box_lanes(nodes[0], pr, inv, lanes, t_min, t_max, t_root);
+  const PacketMask root = box_lanes(nodes[0], pr, inv, lanes, t_min, t_max, nullptr);
   if (root) stack[sp++] = {0, root};
   while (sp > 0) {
     const Entry e = stack[--sp];
@@ -157,9 +162,9 @@ inline void instances_entered(const Accel& acc, const PacketRays<kWidth>& pr, Pa
       continue;
     }
     std::uint32_t a = e.node + 1, b = n.offset;
-    float ta, tb;
-    PacketMask in_a = box_lanes(nodes[a], pr, inv, e.lanes, t_min, t_max, ta);
-    PacketMask in_b = box_lanes(nodes[b], pr, inv, e.lanes, t_min, t_max, tb);
+    float ta = 0.0f, tb = 0.0f;
+    PacketMask in_a = box_lanes(nodes[a], pr, inv, e.lanes, t_min, t_max, NearerFirst ? &ta : nullptr);
+    PacketMask in_b = box_lanes(nodes[b], pr, inv, e.lanes, t_min, t_max, NearerFirst ? &tb : nullptr);
     if (NearerFirst && tb < ta) {
       std::swap(a, b);
       std::swap(in_a, in_b);

@@ -28,7 +28,10 @@ RenderWorker::RenderWorker(rt2::Scene scene, const Options& options, std::functi
       poser_(std::move(poser)),
       options_(options),
       shown_cb_(std::move(shown)) {
-  if (base_.animation >= 0 && !poser_) load_scene(options_, &poser_);
+  if (base_.animation >= 0 && !poser_) {
+    const rt2::io::WarningsOff quiet;  // the scene's own load warned
+    load_scene(options_, &poser_);
+  }
   ViewRequest first;
   first.camera = base_.camera;
   first.seconds = options.pose.seconds;

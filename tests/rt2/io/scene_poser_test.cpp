@@ -1,6 +1,6 @@
 // rt2::ScenePoser (rt2/io/scene_io.h): a scene that moves, posed again from its parsed file,
-// against a fresh load at the same time (bit for bit), and the order of errors in a large
-// primitive, whose vertices are placed on several threads. Each test names the property it
+// against a fresh load at the same time (bit for bit), and the order of errors in the pass
+// that places a primitive's vertices (on several threads for a large one). Each test names the property it
 // checks.
 #include <gtest/gtest.h>
 
@@ -143,6 +143,25 @@ TEST(ScenePoser, TheFirstBadVertexOfALargePrimitiveIsNamedWhicheverThreadMeetsIt
       EXPECT_NE(std::string(e.what()).find("POSITION 19999 is not a finite float"), std::string::npos)
           << e.what();
     }
+  }
+}
+
+// A primitive whose vertex and NORMAL accessor are both at fault names the vertex, as when
+// normals were read after the positions.
+TEST(ScenePoser, ABadVertexIsNamedBeforeABadNormalAccessor) {
+  const test::TempDir dir("poser");
+  test::GltfFile f;
+  f.floats({3e38f, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);  // 0: vertex 0 overflows at scale 10
+  f.floats({0, 0, 1, 0, 0, 1}, "VEC3", 3);                // 1: two normals for three vertices
+  const std::string file = dir.write(
+      "bad.gltf", f.json(R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1}}]}],)"
+                         R"("nodes":[{"mesh":0,"scale":[10,10,10]}],"scenes":[{"nodes":[0]}])"));
+  try {
+    (void)load_scene(file);
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("POSITION 0 is not a finite float"), std::string::npos)
+        << e.what();
   }
 }
 
