@@ -260,7 +260,9 @@ TEST(Instances, BothTopLevelBuildsHitWhereTheFlattenedCopiesDo) {
         ++disagree;
     }
     EXPECT_GT(hits, rays.size() / 3) << count;
-    EXPECT_LE(disagree, rays.size() / 500) << count;
+    // the copies are rounded once, the instanced rays transformed: a ray grazing an edge
+    // may go either way
+    EXPECT_LE(disagree, rays.size() / 500 + 1) << count;
   }
 }
 
