@@ -38,35 +38,22 @@ struct Bin {
   std::uint32_t count = 0;
 };
 
+// Subtrees of at least this many primitives, down to this depth, are built by two OpenMP
+// tasks, each into nodes of its own, appended after in the order a serial build makes them:
+// the tree is the same node for node at any thread count.
+constexpr std::uint32_t kTaskPrims = 1u << 15;
+constexpr std::uint32_t kTaskDepth = 4;
+
+using Nodes = decltype(Bvh::nodes);
+
+// Builds subtrees over the shared primitive records into `nodes` (indices from 0, primitive
+// offsets absolute) and `stats`.
 class Builder {
  public:
-  Builder(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box_of,
-          const BvhConfig& config, Bvh& out)
-      : config_(config), out_(out), bins_(2 * 3 * std::size_t(config.sah_bins)),
-        right_(std::size_t(config.sah_bins)) {
-    prims_.resize(count);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const Aabb box = box_of(i);
-      for (int a = 0; a < 3; ++a) {
-        prims_[i].lo[a] = box.lo[a];
-        prims_[i].hi[a] = box.hi[a];
-      }
-      prims_[i].index = i;
-      prims_[i].pad = 0;
-    }
-    // A full binary tree over n primitives has at most 2n - 1 nodes.
-    out_.nodes.reserve(2 * std::size_t(count));
-  }
+  Builder(const BvhConfig& config, PrimBox* prims, Nodes& nodes, BvhStats& stats)
+      : config_(config), prims_(prims), nodes_(nodes), stats_(stats),
+        bins_(2 * 3 * std::size_t(config.sah_bins)), right_(std::size_t(config.sah_bins)) {}
 
-  void run() {
-    Aabb bounds, cbounds;
-    measure(0, static_cast<std::uint32_t>(prims_.size()), bounds, cbounds);
-    build(0, static_cast<std::uint32_t>(prims_.size()), bounds, cbounds, 0);
-    out_.order.resize(prims_.size());
-    for (std::size_t i = 0; i < prims_.size(); ++i) out_.order[i] = prims_[i].index;
-  }
-
- private:
   // Bounds and (doubled) centroid bounds of prims_[begin, end).
   void measure(std::uint32_t begin, std::uint32_t end, Aabb& bounds, Aabb& cbounds) const {
     bounds = cbounds = Aabb();
@@ -78,33 +65,67 @@ class Builder {
     }
   }
 
+  // The subtree over prims_[begin, end), depth first from nodes_'s end; returns its root.
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, const Aabb& bounds,
                       const Aabb& cbounds, std::uint32_t depth) {
-    const auto index = static_cast<std::uint32_t>(out_.nodes.size());
-    out_.nodes.emplace_back();
-    BvhNode& node = out_.nodes[index];
+    const auto index = static_cast<std::uint32_t>(nodes_.size());
+    nodes_.emplace_back();
+    BvhNode& node = nodes_[index];
     for (int a = 0; a < 3; ++a) {
       const float pad = box_pad(bounds.lo[a], bounds.hi[a]);
       node.lo[a] = bounds.lo[a] - pad;
       node.hi[a] = bounds.hi[a] + pad;
     }
-    BvhStats& st = out_.stats;
-    st.max_depth = std::max(st.max_depth, depth);
+    stats_.max_depth = std::max(stats_.max_depth, depth);
     const std::uint32_t count = end - begin;
     if (count <= config_.max_leaf_size) {
       node.offset = begin;
       node.count = count;
-      ++st.leaves;
-      st.max_leaf_prims = std::max(st.max_leaf_prims, count);
+      ++stats_.leaves;
+      stats_.max_leaf_prims = std::max(stats_.max_leaf_prims, count);
       return index;
     }
     Aabb lb, lcb, rb, rcb;
     const std::uint32_t mid = split(begin, end, cbounds, depth, lb, lcb, rb, rcb);
-    build(begin, mid, lb, lcb, depth + 1);
-    const std::uint32_t right = build(mid, end, rb, rcb, depth + 1);
-    out_.nodes[index].offset = right;  // `node` may dangle: the vector grew
-    out_.nodes[index].count = 0;
+    std::uint32_t right;
+    if (count >= kTaskPrims && depth < kTaskDepth) {
+      right = build_sides_as_tasks(begin, mid, end, lb, lcb, rb, rcb, depth + 1);
+    } else {
+      build(begin, mid, lb, lcb, depth + 1);
+      right = build(mid, end, rb, rcb, depth + 1);
+    }
+    nodes_[index].offset = right;  // `node` may dangle: the vector grew
+    nodes_[index].count = 0;
     return index;
+  }
+
+ private:
+  // Both sides of a split, each by a task into nodes of its own, then appended (left, then
+  // right, as build would have made them) with their inner nodes' offsets moved; returns
+  // the right side's root.
+  std::uint32_t build_sides_as_tasks(std::uint32_t begin, std::uint32_t mid, std::uint32_t end,
+                                     const Aabb& lb, const Aabb& lcb, const Aabb& rb,
+                                     const Aabb& rcb, std::uint32_t depth) {
+    Nodes sides[2];
+    BvhStats side_stats[2];
+    sides[0].reserve(2 * std::size_t(mid - begin));
+    sides[1].reserve(2 * std::size_t(end - mid));
+#pragma omp task default(shared)
+    Builder(config_, prims_, sides[0], side_stats[0]).build(begin, mid, lb, lcb, depth);
+    Builder(config_, prims_, sides[1], side_stats[1]).build(mid, end, rb, rcb, depth);
+#pragma omp taskwait
+    std::uint32_t roots[2];
+    for (int k = 0; k < 2; ++k) {
+      roots[k] = static_cast<std::uint32_t>(nodes_.size());
+      for (BvhNode n : sides[k]) {
+        if (n.count == 0) n.offset += roots[k];  // an inner node names its second child
+        nodes_.push_back(n);
+      }
+      stats_.leaves += side_stats[k].leaves;
+      stats_.max_depth = std::max(stats_.max_depth, side_stats[k].max_depth);
+      stats_.max_leaf_prims = std::max(stats_.max_leaf_prims, side_stats[k].max_leaf_prims);
+    }
+    return roots[1];
   }
 
   // Partitions [begin, end) and returns the first index of the right side, never begin or
@@ -127,7 +148,7 @@ class Builder {
 
   std::uint32_t median(std::uint32_t begin, std::uint32_t end, int axis) {
     const std::uint32_t mid = begin + (end - begin) / 2;
-    PrimBox* p = prims_.data();
+    PrimBox* p = prims_;
     std::nth_element(p + begin, p + mid, p + end, [axis](const PrimBox& a, const PrimBox& b) {
       return a.lo[axis] + a.hi[axis] < b.lo[axis] + b.hi[axis];
     });
@@ -252,7 +273,7 @@ class Builder {
   // the extra copies.
   template <class Left>
   std::uint32_t partition(std::uint32_t begin, std::uint32_t end, Left left) {
-    PrimBox* p = prims_.data();
+    PrimBox* p = prims_;
     std::uint32_t j = begin;
     for (std::uint32_t i = begin; i < end; ++i) {
       const PrimBox q = p[i];
@@ -270,8 +291,9 @@ class Builder {
   };
 
   const BvhConfig& config_;
-  Bvh& out_;
-  mlib::HugePageVector<PrimBox> prims_;  // partitioned over and over: huge pages once large
+  PrimBox* prims_;  // shared by the tasks, each partitioning its own range
+  Nodes& nodes_;
+  BvhStats& stats_;
   std::vector<Bin> bins_;    // [set][axis][bin], two sets (see sah)
   std::vector<Side> right_;  // [bin]: what lies right of the plane before it
 };
@@ -287,7 +309,29 @@ Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box
     throw Error("BVH SAH block size must be a power of two in [1, 64]");
   const auto t0 = std::chrono::steady_clock::now();
   Bvh bvh;
-  if (count > 0) Builder(count, box_of, config, bvh).run();
+  if (count > 0) {
+    // partitioned over and over: huge pages once large
+    mlib::HugePageVector<PrimBox> prims(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const Aabb box = box_of(i);
+      for (int a = 0; a < 3; ++a) {
+        prims[i].lo[a] = box.lo[a];
+        prims[i].hi[a] = box.hi[a];
+      }
+      prims[i].index = i;
+      prims[i].pad = 0;
+    }
+    // A full binary tree over n primitives has at most 2n - 1 nodes.
+    bvh.nodes.reserve(2 * std::size_t(count));
+    Builder root(config, prims.data(), bvh.nodes, bvh.stats);
+    Aabb bounds, cbounds;
+    root.measure(0, count, bounds, cbounds);
+#pragma omp parallel if (count >= kTaskPrims)
+#pragma omp single
+    root.build(0, count, bounds, cbounds, 0);
+    bvh.order.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) bvh.order[i] = prims[i].index;
+  }
   bvh.stats.nodes = static_cast<std::uint32_t>(bvh.nodes.size());
   bvh.stats.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

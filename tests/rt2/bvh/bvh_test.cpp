@@ -2,6 +2,7 @@
 // it, and closest / any hit through the wide traversal, for every instruction set and both
 // triangle tests, against brute force over every primitive.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -765,16 +766,22 @@ TEST(Bvh, WideSahIsTheInnerNodesAndLeafBlocksRandomLinesMeet) {
   EXPECT_EQ(none.nodes + none.leaves, 0.0);
 }
 
-TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
+// `n` boxes with a corner uniform in [-reach, reach]^3 and sides up to `size`.
+std::vector<Aabb> random_boxes(int n, unsigned seed, float reach, float size) {
   std::vector<Aabb> boxes;
-  std::mt19937 rng(1);
-  for (int i = 0; i < 1000; ++i) {
+  std::mt19937 rng(seed);
+  for (int i = 0; i < n; ++i) {
     Aabb b;
-    const vec4 p = test::random_point(rng, -10, 10);
+    const vec4 p = test::random_point(rng, -reach, reach);
     b.grow(p);
-    b.grow(p + test::random_point(rng, 0, 1));
+    b.grow(p + test::random_point(rng, 0, size));
     boxes.push_back(b);
   }
+  return boxes;
+}
+
+TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
+  const std::vector<Aabb> boxes = random_boxes(1000, 1, 10, 1);
   for (std::uint32_t leaf : {1u, 3u, 64u, 5000u}) {
     const Bvh bvh = build_bvh(boxes, BvhConfig{leaf, Split::sah, 16});
     std::vector<int> seen(boxes.size(), 0);
@@ -788,6 +795,44 @@ TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
     EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
     EXPECT_EQ(bvh.stats.leaves, leaves);
     EXPECT_EQ(bvh.stats.nodes, 2 * leaves - 1);  // a full binary tree
+  }
+}
+
+// Large subtrees are built by OpenMP tasks into nodes of their own and appended after: the
+// tree is the same node for node at 1 and 2 threads, depth first (the first child follows
+// its parent), every primitive in one leaf, every child box inside its parent's.
+TEST(Bvh, TreesBuiltByTasksAreTheSameAtAnyThreadCountDepthFirstAndComplete) {
+  const std::vector<Aabb> boxes = random_boxes(150000, 4, 100, 2);
+  const int threads = omp_get_max_threads();
+  for (const Split split : {Split::sah, Split::midpoint}) {
+    const BvhConfig config{4, split, 16};
+    omp_set_num_threads(1);
+    const Bvh one = build_bvh(boxes, config);
+    omp_set_num_threads(2);
+    const Bvh two = build_bvh(boxes, config);
+    omp_set_num_threads(threads);
+    ASSERT_EQ(one.nodes.size(), two.nodes.size());
+    EXPECT_EQ(std::memcmp(one.nodes.data(), two.nodes.data(), one.nodes.size() * sizeof(BvhNode)), 0);
+    EXPECT_TRUE(std::equal(one.order.begin(), one.order.end(), two.order.begin()));
+    EXPECT_EQ(one.stats.leaves, two.stats.leaves);
+    EXPECT_EQ(one.stats.max_depth, two.stats.max_depth);
+    std::vector<int> seen(boxes.size(), 0);
+    for (std::uint32_t i = 0; i < two.nodes.size(); ++i) {
+      const BvhNode& n = two.nodes[i];
+      if (n.is_leaf()) {
+        for (std::uint32_t k = n.offset; k < n.offset + n.count; ++k) ++seen[two.order[k]];
+        continue;
+      }
+      ASSERT_GT(n.offset, i + 1);
+      ASSERT_LT(n.offset, two.nodes.size());
+      for (const std::uint32_t c : {i + 1, n.offset})
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(two.nodes[c].lo[a], n.lo[a]);
+          EXPECT_LE(two.nodes[c].hi[a], n.hi[a]);
+        }
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
+    EXPECT_EQ(two.stats.nodes, 2 * two.stats.leaves - 1);
   }
 }
 
