@@ -38,9 +38,10 @@ struct Bin {
   std::uint32_t count = 0;
 };
 
-// Subtrees of at least this many primitives, down to this depth, are built by two OpenMP
-// tasks, each into nodes of its own, appended after in the order a serial build makes them:
-// the tree is the same node for node at any thread count.
+// The two sides of a split of at least this many primitives, down to this depth, are built
+// at once: the left one in place, the right one by an OpenMP task into nodes of its own,
+// appended after, in the order a serial build makes them: the tree is the same node for
+// node at any thread count.
 constexpr std::uint32_t kTaskPrims = 1u << 15;
 constexpr std::uint32_t kTaskDepth = 4;
 
@@ -100,32 +101,28 @@ class Builder {
   }
 
  private:
-  // Both sides of a split, each by a task into nodes of its own, then appended (left, then
-  // right, as build would have made them) with their inner nodes' offsets moved; returns
-  // the right side's root.
+  // Both sides of a split at once: the left one here, into nodes_ after its parent as
+  // build would place it, the right one by a task into nodes of its own, appended after
+  // with its inner nodes' offsets moved; returns the right side's root.
   std::uint32_t build_sides_as_tasks(std::uint32_t begin, std::uint32_t mid, std::uint32_t end,
                                      const Aabb& lb, const Aabb& lcb, const Aabb& rb,
                                      const Aabb& rcb, std::uint32_t depth) {
-    Nodes sides[2];
-    BvhStats side_stats[2];
-    sides[0].reserve(2 * std::size_t(mid - begin));
-    sides[1].reserve(2 * std::size_t(end - mid));
+    Nodes right_nodes;
+    BvhStats right_stats;
+    right_nodes.reserve(2 * std::size_t(end - mid));
 #pragma omp task default(shared)
-    Builder(config_, prims_, sides[0], side_stats[0]).build(begin, mid, lb, lcb, depth);
-    Builder(config_, prims_, sides[1], side_stats[1]).build(mid, end, rb, rcb, depth);
+    Builder(config_, prims_, right_nodes, right_stats).build(mid, end, rb, rcb, depth);
+    build(begin, mid, lb, lcb, depth);
 #pragma omp taskwait
-    std::uint32_t roots[2];
-    for (int k = 0; k < 2; ++k) {
-      roots[k] = static_cast<std::uint32_t>(nodes_.size());
-      for (BvhNode n : sides[k]) {
-        if (n.count == 0) n.offset += roots[k];  // an inner node names its second child
-        nodes_.push_back(n);
-      }
-      stats_.leaves += side_stats[k].leaves;
-      stats_.max_depth = std::max(stats_.max_depth, side_stats[k].max_depth);
-      stats_.max_leaf_prims = std::max(stats_.max_leaf_prims, side_stats[k].max_leaf_prims);
+    const auto root = static_cast<std::uint32_t>(nodes_.size());
+    for (BvhNode n : right_nodes) {
+      if (n.count == 0) n.offset += root;  // an inner node names its second child
+      nodes_.push_back(n);
     }
-    return roots[1];
+    stats_.leaves += right_stats.leaves;
+    stats_.max_depth = std::max(stats_.max_depth, right_stats.max_depth);
+    stats_.max_leaf_prims = std::max(stats_.max_leaf_prims, right_stats.max_leaf_prims);
+    return root;
   }
 
   // Partitions [begin, end) and returns the first index of the right side, never begin or
