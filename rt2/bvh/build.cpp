@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
 
 #include "mlib/huge_pages.h"
@@ -109,11 +110,24 @@ class Builder {
                                      const Aabb& rcb, std::uint32_t depth) {
     Nodes right_nodes;
     BvhStats right_stats;
-    right_nodes.reserve(2 * std::size_t(end - mid));
+    // An exception (out of memory) may not leave a task: each side keeps its own, and the
+    // left one's is thrown after the task has ended, as the serial build would throw it.
+    std::exception_ptr errors[2];
 #pragma omp task default(shared)
-    Builder(config_, prims_, right_nodes, right_stats).build(mid, end, rb, rcb, depth);
-    build(begin, mid, lb, lcb, depth);
+    try {
+      right_nodes.reserve(2 * std::size_t(end - mid));
+      Builder(config_, prims_, right_nodes, right_stats).build(mid, end, rb, rcb, depth);
+    } catch (...) {
+      errors[1] = std::current_exception();
+    }
+    try {
+      build(begin, mid, lb, lcb, depth);
+    } catch (...) {
+      errors[0] = std::current_exception();
+    }
 #pragma omp taskwait
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
     const auto root = static_cast<std::uint32_t>(nodes_.size());
     for (BvhNode n : right_nodes) {
       if (n.count == 0) n.offset += root;  // an inner node names its second child
@@ -323,9 +337,15 @@ Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box
     Builder root(config, prims.data(), bvh.nodes, bvh.stats);
     Aabb bounds, cbounds;
     root.measure(0, count, bounds, cbounds);
+    std::exception_ptr error;  // thrown after the parallel region, which it may not leave
 #pragma omp parallel if (count >= kTaskPrims)
 #pragma omp single
-    root.build(0, count, bounds, cbounds, 0);
+    try {
+      root.build(0, count, bounds, cbounds, 0);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    if (error) std::rethrow_exception(error);
     bvh.order.resize(count);
     for (std::uint32_t i = 0; i < count; ++i) bvh.order[i] = prims[i].index;
   }
