@@ -200,9 +200,10 @@ double Accel::refit(const Scene& scene, const BvhConfig& config, int threads) {
       const std::span<const Mesh> meshes =
           t == 0 ? std::span<const Mesh>(scene.meshes)
                  : std::span<const Mesh>(&scene.instanced_meshes[t - 1], 1);
-      const MeshFaces faces(meshes);
+      std::size_t count = 0;
+      for (const Mesh& m : meshes) count += m.faces.size();
       const TreeRecord& record = trees[t];
-      if (faces.total() != record.count)
+      if (count != record.count)
         throw Error("refit: the scene's triangles are not those the trees were built over");
       // Below some 64k triangles a second thread costs more than it saves.
       const int tree_team = record.count < 65536 ? 1 : team;

@@ -13,41 +13,6 @@ namespace rt2 {
 
 namespace {
 
-// WideNode::octant_order for the n children in slots [0, n). Each child's position is
-// its rank, counted without a branch (a sort of eight random keys mispredicts about every
-// other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
-// opposite one). A node of two children keeps the identity order: the walk orders two
-// children by their distances (rt2/kernel/wide_traverse.h).
-template <int N>
-void set_octant_orders(WideNode<N>& w, int n) {
-  for (int j = 0; j < N; ++j)  // j in each field
-    w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
-  if (n <= 2) return;
-  for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
-  float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < n; ++i)
-      centre[a][i] = w.bounds[2 * a][i] * 0.5f + w.bounds[2 * a + 1][i] * 0.5f;
-  for (int o = 0; o < 4; ++o) {
-    float key[N];  // along the diagonal: farther is larger
-    for (int i = 0; i < n; ++i)
-      key[i] = ((o & 1 ? -centre[0][i] : centre[0][i]) + (o & 2 ? -centre[1][i] : centre[1][i])) +
-               (o & 4 ? -centre[2][i] : centre[2][i]);
-    std::uint32_t slot_at[N];
-    for (int j = 0; j < N; ++j) slot_at[j] = std::uint32_t(j);  // the unused slots stay last
-    for (int i = 0; i < n; ++i) {
-      int rank = 0;  // the keys before key i: larger, or equal in a lower slot
-      for (int j = 0; j < n; ++j) rank += (key[j] > key[i]) | ((key[j] == key[i]) & (j < i));
-      slot_at[rank] = std::uint32_t(i);
-    }
-    for (int j = 0; j < N; ++j) {
-      const std::uint32_t backward = j < n ? slot_at[n - 1 - j] : slot_at[j];
-      w.octant_order[j] |=
-          slot_at[j] << (kOrderBits<N> * o) | backward << (kOrderBits<N> * (7 - o));
-    }
-  }
-}
-
 // Refitting: the boxes of a tree whose triangles moved, its shape kept. Each box is what the
 // build gives the same triangles in the same node: the union of their vertices, padded by
 // box_pad. The children's orders per octant are kept: they steer which child a walk enters
@@ -165,10 +130,44 @@ class Collapser {
         out_.nodes.emplace_back();
       }
     }
-    set_octant_orders<N>(w, n);
+    set_octant_orders(w, n);
     out_.nodes[index] = w;
     for (int i = 0; i < n; ++i)
       if (!(w.child[i] & kLeaf)) fill(w.child[i], kids[i], depth + 1);
+  }
+
+  // WideNode::octant_order for the n children in slots [0, n). Each child's position is
+  // its rank, counted without a branch (a sort of eight random keys mispredicts about every
+  // other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
+  // opposite one). A node of two children keeps the identity order: the walk orders two
+  // children by their distances (rt2/kernel/wide_traverse.h).
+  static void set_octant_orders(WideNode<N>& w, int n) {
+    for (int j = 0; j < N; ++j)  // j in each field
+      w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
+    if (n <= 2) return;
+    for (int j = 0; j < N; ++j) w.octant_order[j] = 0;
+    float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < n; ++i)
+        centre[a][i] = w.bounds[2 * a][i] * 0.5f + w.bounds[2 * a + 1][i] * 0.5f;
+    for (int o = 0; o < 4; ++o) {
+      float key[N];  // along the diagonal: farther is larger
+      for (int i = 0; i < n; ++i)
+        key[i] = ((o & 1 ? -centre[0][i] : centre[0][i]) + (o & 2 ? -centre[1][i] : centre[1][i])) +
+                 (o & 4 ? -centre[2][i] : centre[2][i]);
+      std::uint32_t slot_at[N];
+      for (int j = 0; j < N; ++j) slot_at[j] = std::uint32_t(j);  // the unused slots stay last
+      for (int i = 0; i < n; ++i) {
+        int rank = 0;  // the keys before key i: larger, or equal in a lower slot
+        for (int j = 0; j < n; ++j) rank += (key[j] > key[i]) | ((key[j] == key[i]) & (j < i));
+        slot_at[rank] = std::uint32_t(i);
+      }
+      for (int j = 0; j < N; ++j) {
+        const std::uint32_t backward = j < n ? slot_at[n - 1 - j] : slot_at[j];
+        w.octant_order[j] |=
+            slot_at[j] << (kOrderBits<N> * o) | backward << (kOrderBits<N> * (7 - o));
+      }
+    }
   }
 
   // Which binary nodes become wide nodes, by dynamic programming over the binary tree (Ylitie
