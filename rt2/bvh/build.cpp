@@ -14,6 +14,8 @@
 #include <exception>
 #include <limits>
 
+#include <omp.h>
+
 #include "mlib/huge_pages.h"
 #include "rt2/base/error.h"
 
@@ -39,11 +41,12 @@ struct Bin {
   std::uint32_t count = 0;
 };
 
-// The two sides of a split of at least this many primitives, down to this depth, are built
-// at once: the left one in place, the right one by an OpenMP task into nodes of its own,
+// On a team of several threads, the two sides of a split of at least this many primitives,
+// down to this depth, are built at once (below, the copy costs more than the second thread
+// saves): the left one in place, the right one by an OpenMP task into nodes of its own,
 // appended after, in the order a serial build makes them: the tree is the same node for
 // node at any thread count.
-constexpr std::uint32_t kTaskPrims = 1u << 15;
+constexpr std::uint32_t kTaskPrims = 1u << 18;
 constexpr std::uint32_t kTaskDepth = 4;
 
 using Nodes = decltype(Bvh::nodes);
@@ -90,7 +93,7 @@ class Builder {
     Aabb lb, lcb, rb, rcb;
     const std::uint32_t mid = split(begin, end, cbounds, depth, lb, lcb, rb, rcb);
     std::uint32_t right;
-    if (count >= kTaskPrims && depth < kTaskDepth) {
+    if (count >= kTaskPrims && depth < kTaskDepth && omp_get_num_threads() > 1) {
       right = build_sides_as_tasks(begin, mid, end, lb, lcb, rb, rcb, depth + 1);
     } else {
       build(begin, mid, lb, lcb, depth + 1);

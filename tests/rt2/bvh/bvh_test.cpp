@@ -802,7 +802,7 @@ TEST(Bvh, EveryPrimitiveIsInExactlyOneLeafAndLeavesRespectTheSizeLimit) {
 // tree is the same node for node at 1 and 2 threads, depth first (the first child follows
 // its parent), every primitive in one leaf, every child box inside its parent's.
 TEST(Bvh, TreesBuiltByTasksAreTheSameAtAnyThreadCountDepthFirstAndComplete) {
-  const std::vector<Aabb> boxes = random_boxes(150000, 4, 100, 2);
+  const std::vector<Aabb> boxes = random_boxes(600000, 4, 100, 2);
   const int threads = omp_get_max_threads();
   for (const Split split : {Split::sah, Split::midpoint}) {
     const BvhConfig config{4, split, 16};
