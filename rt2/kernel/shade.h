@@ -3,9 +3,9 @@
 // batch and its secondary rays into the next batch; misses take the background.
 //
 // The material models are a closed set (scene/material.h, Shading), dispatched by one switch
-// (shade_hit): a model is one file of this folder and one case there. Phong hits without
-// texture or transparency are shaded 16, 8 or 4 at a time (phong_lanes.h), bit for bit as
-// one by one.
+// (shade_hit): a model is one file of this folder and one case there. Hits without texture
+// or transparency are shaded 16, 8 or 4 at a time (phong_lanes.h, pbr_lanes.h), bit for
+// bit as one by one.
 #pragma once
 
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include "rt2/kernel/pbr.h"
 #include "rt2/kernel/phong.h"
 #include "rt2/kernel/phong_lanes.h"
+#include "rt2/kernel/pbr_lanes.h"
 #include "rt2/render/renderer.h"
 
 namespace rt2::RT2_ISA {
@@ -49,9 +50,9 @@ MLIB_INLINE void shade_hit(const CompiledScene& sc, const RenderSettings& st, in
 // the lights stage used them); without, every hit considers every light and its surface
 // point is made here (one pass over the hits).
 // kHitLanes rays at a time: without lists and with at most kMaxLaneLights lights, the
-// Phong hits among them are shaded in one SIMD pass (phong_lanes.h; RenderSettings::
-// shading_lanes), the others one by one; each ray's results are then added in batch
-// order, the same bits either way.
+// Phong or physically based hits among them are shaded in one SIMD pass (hit_lanes.h;
+// RenderSettings::shading_lanes), the others one by one; each ray's results are then
+// added in batch order, the same bits either way.
 inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, RayCounts& counts) {
   const CompiledScene& sc = r.scene();
   const RenderSettings& st = r.settings();
@@ -59,18 +60,23 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
   const float pixel_angle =
       2.0f * std::tan(r.camera().fov() * (std::numbers::pi_v<float> / 360.0f)) / float(st.height);
   const bool in_lanes = st.shading_lanes && !lists && sc.lights.size() <= kMaxLaneLights;
-  PhongLanes phong;  // every lane a pass reads, gather_lanes writes
+  HitLanes pass;  // every lane a pass reads, gather_lanes writes
   const std::uint32_t* samples = b.rays.columns().u(PathRays::kSample);
   const std::size_t n = b.rays.size();
   for (std::size_t first = 0; first < n; first += kHitLanes) {
     const std::size_t end = std::min(first + kHitLanes, n);
     unsigned shaded = 0;  // the lanes shaded in SIMD
     if (in_lanes) {
-      shaded = gather_lanes(sc, b, first, end, phong);
+      // a pass shades the Phong hits in lanes, or, when it has none, the physically based
+      // ones
+      shaded = gather_lanes(sc, sc.plain_phong.data(), b, first, end, pass);
       if (shaded) {
-        shade_lanes(sc, st, depth, shaded, b.rays, first, phong);
-        count_lanes(sc, phong, shaded, counts);
+        shade_phong_lanes(sc, st, depth, shaded, b.rays, first, pass);
+      } else if (sc.any_plain_pbr) {
+        shaded = gather_lanes(sc, sc.plain_pbr.data(), b, first, end, pass);
+        if (shaded) shade_pbr_lanes(sc, st, depth, shaded, b.rays, first, pass);
       }
+      if (shaded) count_lanes(sc, pass, shaded, counts);
     }
     // When no other ray of the pass appends rays (they all missed), the lanes' rays are
     // appended a vector at a time (emit_lanes), with several lights only where no two rays
@@ -79,14 +85,14 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
         shaded != 0 && (sc.lights.size() <= 1 || depth == 0 || sc.one_ray_per_sample);
     for (std::size_t i = first; i < end && at_once; ++i)
       at_once = (shaded >> (i - first) & 1) || !b.hits[i].found();
-    if (at_once) emit_lanes(sc, phong, samples + first, b);
+    if (at_once) emit_lanes(sc, pass, samples + first, b);
     for (std::size_t i = first; i < end; ++i) {
       if (shaded >> (i - first) & 1) {
         const int l = int(i - first);
         if (at_once)
-          b.colors[samples[i]] += phong.ambient(l);
+          b.colors[samples[i]] += pass.local(l);
         else
-          emit_lane(sc, phong, l, samples[i], b);
+          emit_lane(sc, pass, l, samples[i], b);
         continue;
       }
       if (!b.hits[i].found()) {

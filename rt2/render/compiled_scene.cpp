@@ -57,9 +57,12 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
       c.pbr_surfaces[i] = pbr_surface(m.base_color, m.metallic, m.roughness, m.transmission);
   c.times.brdf_table_ms = ms_since(t);
   c.plain_phong.resize(c.materials.size());
+  c.plain_pbr.resize(c.materials.size());
   for (std::size_t i = 0; i < c.materials.size(); ++i) {
     const Material& m = c.materials[i];
     c.plain_phong[i] = m.plain_phong();
+    c.plain_pbr[i] = m.plain_pbr();
+    c.any_plain_pbr |= m.plain_pbr();
     if (m.model != Shading::phong || m.transparency > 0.0f) c.one_ray_per_sample = false;
   }
   t = Clock::now();

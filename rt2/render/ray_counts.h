@@ -18,7 +18,7 @@ namespace rt2 {
 struct LightCounts {
   std::uint64_t points = 0, considered = 0, in_range = 0, lists = 0, list_entries = 0;
   std::uint64_t unoccluded = 0;  // shadow rays proven to pass whole, not traced
-  std::uint64_t in_lanes = 0;    // shading points shaded in SIMD lanes (phong_lanes.h)
+  std::uint64_t in_lanes = 0;    // shading points shaded in SIMD lanes (hit_lanes.h)
   LightCounts& operator+=(const LightCounts& o) {
     points += o.points;
     considered += o.considered;

@@ -42,8 +42,8 @@ struct RenderSettings {
   // BVH together where its rays allow (rt2/kernel/packet_traverse.h); false: every ray alone.
   // The image does not depend on it.
   bool packets = true;
-  // Phong hits without texture or transparency are shaded kWidestLanes at a time in one
-  // SIMD pass (rt2/kernel/phong_lanes.h) when every hit considers every light (no light lists)
+  // Phong and physically based hits without texture or transparency are shaded
+  // kWidestLanes at a time in one SIMD pass (rt2/kernel/hit_lanes.h) when every hit considers every light (no light lists)
   // and there are at most kMaxLaneLights (8) lights; false: one hit at a time. The image
   // does not depend on it.
   bool shading_lanes = true;

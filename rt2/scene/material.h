@@ -66,6 +66,14 @@ struct Material {
   bool plain_phong() const {
     return model == Shading::phong && base_color_texture == kNoTexture && !(transparency > 0.0f);
   }
+  // Physically based without a texture or transmission: the shading lanes (pbr_lanes.h)
+  // take its hits.
+  bool plain_pbr() const {
+    return model == Shading::pbr && base_color_texture == kNoTexture &&
+           metallic_roughness_texture == kNoTexture && normal_texture == kNoTexture &&
+           emissive_texture == kNoTexture && roughness_texture == kNoTexture &&
+           metallic_texture == kNoTexture && !(transmission * (1.0f - metallic) > 0.0f);
+  }
   // Kd at the world-space point p: `diffuse`, or `diffuse2` on the checker's odd cells.
   // Always inline: the render kernels, compiled per instruction set, call it per hit, and
   // an out-of-line copy would be one symbol with wide and baseline bodies.

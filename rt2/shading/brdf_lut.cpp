@@ -14,14 +14,11 @@ namespace rt2 {
 
 namespace {
 
-constexpr int kMu = 64;    // columns, over sqrt(mu)
-constexpr int kSize = 64;  // rows, over roughness
+constexpr int kMu = SplitSumTable::kMu;
+constexpr int kSize = SplitSumTable::kRoughness;
 constexpr std::uint32_t kSamples = 1024;
 
-struct Table {
-  std::array<SplitSum, kSize * kMu> entry;  // [roughness row j][column i]
-  std::array<SplitSum, kSize> average;      // per roughness row
-};
+using Table = SplitSumTable;
 
 // Column i holds mu = x^2 at x = (i + 0.5) / kMu: the albedo changes fastest at grazing
 // views (small mu), where the columns are densest.
@@ -86,17 +83,17 @@ Table make_table() {
   return t;
 }
 
-const Table& table() {
+}  // namespace
+
+const SplitSumTable& split_sum_table() {
   static const Table t = make_table();
   return t;
 }
 
-}  // namespace
-
-SplitSum split_sum(float n_dot_v, float roughness) { return lookup(table(), n_dot_v, roughness); }
+SplitSum split_sum(float n_dot_v, float roughness) { return lookup(split_sum_table(), n_dot_v, roughness); }
 
 SplitSum split_sum_average(float roughness) {
-  const Table& t = table();
+  const Table& t = split_sum_table();
   const float y = clamp01(roughness) * float(kSize - 1);
   const int j = std::min(int(y), kSize - 2);
   const float f = y - float(j);

@@ -21,8 +21,22 @@ struct SplitSum {
   float a = 0.0f, b = 0.0f;  // E = F0 a + b
 };
 
-// A and B at n·v = n_dot_v (clamped to [0, 1]) and roughness (clamped), bilinear.
+// A and B at n·v = n_dot_v (clamped to [0, 1]) and roughness (clamped), bilinear:
+// with x = clamp(sqrt(clamp01(n_dot_v)) kMu - 0.5, 0, kMu - 1), y = clamp01(roughness)
+// (kRoughness - 1), i = min(int(x), kMu - 2), j = min(int(y), kRoughness - 2), the blend
+// a + (b - a) t across i, i + 1 (t = x - i) of rows j and j + 1, then across the rows
+// (t = y - j); clamp01(x) = x > 0 ? (x < 1 ? x : 1) : 0.
 SplitSum split_sum(float n_dot_v, float roughness);
+
+// The table itself, for lookups that must return what split_sum returns (the shading
+// lanes, rt2/kernel/pbr_lanes.h): entry[j kMu + i] for column i and roughness row j.
+struct SplitSumTable {
+  static constexpr int kMu = 64;          // columns, over sqrt(mu)
+  static constexpr int kRoughness = 64;   // rows, over roughness
+  SplitSum entry[kRoughness * kMu];
+  SplitSum average[kRoughness];
+};
+const SplitSumTable& split_sum_table();
 
 // A_avg and B_avg at `roughness` (clamped), linear between the table's rows.
 SplitSum split_sum_average(float roughness);

@@ -93,13 +93,25 @@ class Environment {
   }
   // Prefiltered radiance around the unit reflection direction r; roughness (perceptual) in
   // [0, 1], clamped, interpolated linearly between the two nearest levels.
-  vec4 specular(const vec4& r, float roughness) const {
-    const Uv uv = map_uv(r);
+  vec4 specular(const vec4& r, float roughness) const { return specular_at(map_uv(r), roughness); }
+  // The same at the map coordinates of r, map_uv(r).
+  vec4 specular_at(Uv uv, float roughness) const {
     const float x = std::clamp(roughness, 0.0f, 1.0f) * float(kSpecularLevels - 1);
     const int k = std::min(int(x), kSpecularLevels - 2);
     const vec4 a = specular_[std::size_t(k)].bilinear(uv);
     const vec4 b = specular_[std::size_t(k) + 1].bilinear(uv);
     return a + (b - a) * (x - float(k));
+  }
+
+  // What the lookups read, for the shading lanes (rt2/kernel/pbr_lanes.h), which compute
+  // the same bits: the coefficients, and map_uv's shift in u.
+  const IrradianceSh& irradiance_sh() const { return irradiance_; }
+  float u_shift() const { return u_shift_; }
+  // u in map space of the world direction d: the rotation is a shift in u.
+  Uv map_uv(const vec4& d) const {
+    Uv uv = direction_to_uv(d);
+    uv.u += u_shift_;
+    return uv;
   }
 
   // Wall-clock seconds the factory spent prefiltering.
@@ -115,13 +127,6 @@ class Environment {
   Environment() = default;
   // Prefilters everything from source_ (with the rotation already set).
   void prefilter();
-  // u in map space of the world direction d: the rotation is a shift in u.
-  Uv map_uv(const vec4& d) const {
-    Uv uv = direction_to_uv(d);
-    uv.u += u_shift_;
-    return uv;
-  }
-
   EquirectMap source_;
   IrradianceSh irradiance_;
   std::vector<EquirectMap> specular_;  // kSpecularLevels

@@ -268,6 +268,106 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
       }
 }
 
+// The built-in scene in physically based materials, for the PBR lanes: the chair a smooth
+// metal (roughness 0: mirror rays), the sphere at exactly the mirror threshold, and a row of
+// spheres from rough dielectric to rough metal, one emissive, one transmissive (shaded one
+// by one between lanes of its pass), an icosphere with vertex normals and a Phong floor
+// (passes that mix the models); under a rotated sky, or none (a uniform environment).
+Scene pbr_lanes_scene(bool sky) {
+  Scene s = make_default_scene();
+  const auto pbr = [](vec4 base, float metallic, float roughness) {
+    Material m;
+    m.model = Shading::pbr;
+    m.base_color = base;
+    m.metallic = metallic;
+    m.roughness = roughness;
+    return m;
+  };
+  s.materials[s.sphere_materials[0]] = pbr(vec4(0.9f, 0.6f, 0.3f), 1.0f, 0.0f);  // the chair's too
+  s.sphere_materials[0] = s.add_material("threshold", pbr(vec4(0.7f, 0.7f, 0.8f), 0.3f, 0.05f));
+  Material glowing = pbr(vec4(0.2f, 0.8f, 0.3f), 0.0f, 0.6f);
+  glowing.emissive = vec4(0.4f, 0.2f, 0.1f);
+  Material clear = pbr(vec4(0.9f, 0.9f, 1.0f), 0.0f, 0.0f);
+  clear.transmission = 1.0f;
+  const Material row[] = {pbr(vec4(0.8f, 0.3f, 0.2f), 0.0f, 1.0f), pbr(vec4(0.5f, 0.5f, 0.5f), 0.5f, 0.3f),
+                          pbr(vec4(0.9f, 0.8f, 0.2f), 1.0f, 0.7f), glowing, clear,
+                          pbr(vec4(0.3f, 0.4f, 0.9f), 0.0f, 0.0501f)};
+  for (std::size_t i = 0; i < std::size(row); ++i) {
+    s.spheres.push_back({vec4(-0.6f + 0.3f * float(i), 0.12f, -0.7f), 0.12f});
+    s.sphere_materials.push_back(s.add_material("row " + std::to_string(i), row[i]));
+  }
+  s.meshes.push_back(make_icosphere(vec4(-0.45f, 0.2f, 0.35f), 0.2f, 2,
+                                    s.add_material("ico", pbr(vec4(0.6f, 0.9f, 0.6f), 0.2f, 0.4f))));
+  if (sky) s.environment = EnvironmentDesc{"", 1.3f, 37.0f, vec4(0.4f, 0.6f, -0.5f)};
+  return s;
+}
+
+// The PBR shading lanes (pbr_lanes.h) compute what pbr.h computes for one hit: the image is
+// the same bits with the lanes on or off, on every instruction set, with both triangle
+// tests, at the depth limit (mirrors show the prefiltered map) and deeper, under a sky or
+// none, with 0, 1, 8 and 9 lights (9: every hit one by one), lights with a range, and from
+// inside a smooth sphere (every normal flipped).
+TEST(RenderCore, PbrShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) {
+  struct Case {
+    std::string name;
+    Scene scene;
+    int depth;
+    bool lanes_expected;
+  };
+  std::vector<Case> cases;
+  for (bool sky : {false, true})
+    for (int depth : {1, 8}) cases.push_back({"sky " + std::to_string(sky), pbr_lanes_scene(sky), depth, true});
+  for (std::size_t lights : {0u, 8u, 9u}) {
+    Scene s = pbr_lanes_scene(true);
+    if (lights == 0)
+      s.lights.clear();
+    else
+      set_light_count(s, lights);
+    cases.push_back({"lights " + std::to_string(lights), s, 4, lights <= 8});
+  }
+  {
+    Scene s = pbr_lanes_scene(true);
+    s.lights[0].range = 4.0f;  // the window at every lit point, zero beyond
+    s.lights.push_back(Light{vec4(-0.5f, 0.6f, 0.2f), vec4(0.3f, 0.5f, 1.0f), 0.8f, 0.7f});
+    cases.push_back({"ranged lights", s, 4, true});
+  }
+  {
+    Scene s = inside_mirror(false);
+    for (std::uint32_t m : s.sphere_materials) {
+      s.materials[m].model = Shading::pbr;
+      s.materials[m].metallic = 1.0f;
+      s.materials[m].roughness = 0.0f;
+    }
+    s.environment = EnvironmentDesc{};
+    cases.push_back({"inside a smooth sphere", s, 6, true});
+  }
+  for (const Case& c : cases)
+    for (Isa isa : test::runnable_isas())
+      for (bool watertight : {false, true}) {
+        RenderSettings st = settings(2, 1, 7);
+        st.depth = c.depth;
+        st.watertight = watertight;
+        st.light_culling = LightCulling::none;  // every hit considers every light
+        st.shading_lanes = false;
+        FrameResult one, lanes;
+        const Image ref = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &one);
+        st.shading_lanes = true;
+        const Image img = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
+        const std::string what = c.name + " depth " + std::to_string(c.depth) + " " +
+                                 isa_name(isa) + " watertight " + std::to_string(watertight);
+        EXPECT_TRUE(identical(ref, img)) << what;
+        EXPECT_EQ(one.rays.total(), lanes.rays.total()) << what;
+        EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
+        EXPECT_EQ(one.rays.lights.points, lanes.rays.lights.points) << what;
+        EXPECT_EQ(one.rays.lights.considered, lanes.rays.lights.considered) << what;
+        EXPECT_EQ(one.rays.lights.in_lanes, 0u) << what;
+        if (c.lanes_expected)
+          EXPECT_GT(lanes.rays.lights.in_lanes, lanes.rays.lights.points / 2) << what;
+        else
+          EXPECT_EQ(lanes.rays.lights.in_lanes, 0u) << what;
+      }
+}
+
 TEST(RenderCore, EightPassesOfOneSampleEqualOnePassOfEight) {
   for (Pattern pattern : {Pattern::grid, Pattern::circle}) {
     RenderSettings one = settings(8, 1), eight = settings(8, 8);
