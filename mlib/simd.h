@@ -23,6 +23,10 @@ namespace mlib {
 MLIB_INLINE void prefetch(const void* p, int lines = 1) {
   for (int i = 0; i < lines; ++i) __builtin_prefetch(static_cast<const char*>(p) + 64 * i, 0, 3);
 }
+// The same for lines about to be written (owned, so that the stores do not wait for them).
+MLIB_INLINE void prefetch_for_write(const void* p, int lines = 1) {
+  for (int i = 0; i < lines; ++i) __builtin_prefetch(static_cast<const char*>(p) + 64 * i, 1, 3);
+}
 }  // namespace mlib
 
 // MLIB_SCALAR (scons arch=scalar) swaps the whole file for the same API in plain lane-by-

@@ -279,9 +279,10 @@ void Report::print_summary() const {
   if (j.contains("stage_ms")) {
     const auto& sm = j["stage_ms"];
     std::printf("stages, thread-ms per frame: generate %.2f, intersect %.2f, lights %.2f, shade "
-                "%.2f, shadow %.2f\n",
+                "%.2f, shadow %.2f, film %.2f\n",
                 sm["generate"].get<double>(), sm["intersect"].get<double>(),
-                sm["lights"].get<double>(), sm["shade"].get<double>(), sm["shadow"].get<double>());
+                sm["lights"].get<double>(), sm["shade"].get<double>(), sm["shadow"].get<double>(),
+                sm["film"].get<double>());
   }
   if (j.contains("pose_ms"))
     std::printf("scene posed per frame: load %.2f ms, trees and lights %.2f ms (medians); "
@@ -369,7 +370,8 @@ nlohmann::json Report::json() const {
                      {"intersect", stage(&rt2::StageTimes::intersect)},
                      {"lights", stage(&rt2::StageTimes::lights)},
                      {"shade", stage(&rt2::StageTimes::shade)},
-                     {"shadow", stage(&rt2::StageTimes::shadow)}};
+                     {"shadow", stage(&rt2::StageTimes::shadow)},
+                     {"film", stage(&rt2::StageTimes::film)}};
   if (!ranks_.empty()) {
     j["mpi_processes"] = ranks_.size();
     j["mpi_ranks"] = nlohmann::json::array();

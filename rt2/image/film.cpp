@@ -10,17 +10,11 @@ Film::Film(int width, int height)
     : width_(width), height_(height), sum_(std::size_t(width) * std::size_t(height)),
       carry_(sum_.size()), samples_(sum_.size(), 0) {}
 
-void Film::clear() {
-  std::fill(sum_.begin(), sum_.end(), vec4());
-  std::fill(carry_.begin(), carry_.end(), vec4());
-  std::fill(samples_.begin(), samples_.end(), 0u);
-}
+void Film::clear() { std::fill(samples_.begin(), samples_.end(), 0u); }
 
 void Film::clear(const Tile& tile) {
   for (int y = tile.y0; y < tile.y1; ++y) {
     const auto row = std::ptrdiff_t(index(tile.x0, y)), end = row + tile.width();
-    std::fill(sum_.begin() + row, sum_.begin() + end, vec4());
-    std::fill(carry_.begin() + row, carry_.begin() + end, vec4());
     std::fill(samples_.begin() + row, samples_.begin() + end, 0u);
   }
 }

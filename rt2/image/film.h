@@ -6,6 +6,11 @@
 // of their index; the film keeps the sum and its compensation between passes, so
 // `--subpixels 8 --passes 8` adds the same values in the same order as one pass of 8 and
 // gives the same bits. Pixels are independent: tiles and threads write disjoint pixels.
+//
+// Invariant: a pixel's sum and compensation are 0 while it holds no sample, whatever its
+// memory holds, and its compensation is sum - sum while it holds one (what Kahan's first
+// step leaves, NaN included): clearing resets the counts only, and a frame's first sample
+// per pixel neither reads the film's sums nor writes a compensation.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +28,7 @@ class Film {
   // A film of width x height pixels holding no sample (check_image_fits first).
   Film(int width, int height);
 
-  // Drops every sample (keeps the memory, for the next frame).
+  // Drops every sample (keeps the memory, for the next frame): the counts to 0.
   void clear();
   // Drops the samples of the pixels of `tile` only.
   void clear(const Tile& tile);
@@ -37,22 +42,30 @@ class Film {
   MLIB_INLINE void add(int x, int y, const vec4& color) {
     const std::size_t i = index(x, y);
     // Compensated (Kahan) summation.
-    const vec4 y_ = color - carry_[i];
-    const vec4 t = sum_[i] + y_;
-    carry_[i] = (t - sum_[i]) - y_;
+    const std::uint32_t n = samples_[i]++;
+    if (n == 0) {
+      sum_[i] = vec4() + (color - vec4());  // its compensation is sum - sum
+      return;
+    }
+    const vec4 sum = sum_[i];
+    const vec4 carry = n == 1 ? vec4(sum - sum) : carry_[i];
+    const vec4 y_ = color - carry;
+    const vec4 t = sum + y_;
+    carry_[i] = (t - sum) - y_;
     sum_[i] = t;
-    ++samples_[i];
   }
 
   // Asks for the state of the pixels in columns [x0, x1) of rows [y0, y1) to be brought
   // into the caches, ahead of adding to them (a hint: the film of a frame is larger than
-  // the caches, and a block's rays take long enough to hide the fetch).
+  // the caches, and a block's rays take long enough to hide the fetch): the counts and
+  // sums, and the compensations where the block's first pixel holds more than one sample.
   void prefetch(int x0, int y0, int x1, int y1) const {
     const int lines = ((x1 - x0) * int(sizeof(vec4)) + 63) / 64 + 1;
+    const bool carried = samples_[index(x0, y0)] > 1;
     for (int y = y0; y < y1; ++y) {
-      mlib::prefetch(&sum_[index(x0, y)], lines);
-      mlib::prefetch(&carry_[index(x0, y)], lines);
-      mlib::prefetch(&samples_[index(x0, y)], 2);
+      mlib::prefetch_for_write(&sum_[index(x0, y)], lines);
+      if (carried) mlib::prefetch_for_write(&carry_[index(x0, y)], lines);
+      mlib::prefetch_for_write(&samples_[index(x0, y)], 2);
     }
   }
 

@@ -87,7 +87,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   }
   // 7. film
   add_to_film(block, samples, b, film);
-  lap(times.shade);
+  lap(times.film);
 }
 
 // Samples [s0, s1) of the pixels of `tile`, block by block, into the film.

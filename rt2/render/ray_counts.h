@@ -36,14 +36,15 @@ struct LightCounts {
 // finding each point's lights (lists and light-tree walks), shading (surface points, light
 // terms, secondary rays, film), shadow rays.
 struct StageTimes {
-  std::uint64_t generate = 0, intersect = 0, lights = 0, shade = 0, shadow = 0;
-  std::uint64_t total() const { return generate + intersect + lights + shade + shadow; }
+  std::uint64_t generate = 0, intersect = 0, lights = 0, shade = 0, shadow = 0, film = 0;
+  std::uint64_t total() const { return generate + intersect + lights + shade + shadow + film; }
   StageTimes& operator+=(const StageTimes& o) {
     generate += o.generate;
     intersect += o.intersect;
     lights += o.lights;
     shade += o.shade;
     shadow += o.shadow;
+    film += o.film;
     return *this;
   }
 };

@@ -240,6 +240,7 @@ TEST(StageTimes, ZeroByDefaultAndEveryStageTimedWhenAsked) {
   EXPECT_GT(t.lights, 0u);
   EXPECT_GT(t.shade, 0u);
   EXPECT_GT(t.shadow, 0u);
+  EXPECT_GT(t.film, 0u);
 }
 
 // Lists of tiles and clusters skip the shadow rays of lights their hits provably see: the
