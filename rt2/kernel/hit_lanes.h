@@ -235,6 +235,11 @@ MLIB_INLINE void select3(M m, const V* a, const V* b, V* out) {
   for (int c = 0; c < 3; ++c) out[c] = select(m, a[c], b[c]);
 }
 
+// std::clamp(x, lo, hi), std::min(a, b) and std::max(a, b) as the standard defines them
+// (x < lo ? lo : hi < x ? hi : x; b < a ? b : a; a < b ? b : a), NaN included.
+MLIB_INLINE V clamp_std(V x, V lo, V hi) { return select(x < lo, lo, select(hi < x, hi, x)); }
+MLIB_INLINE V min_std(V a, V b) { return select(b < a, b, a); }
+MLIB_INLINE V max_std(V a, V b) { return select(a < b, b, a); }
 // a / |a| as vec4's normalize of (a, +0): divided by sqrt(a·a) where that is a normal
 // float, and through normalize itself (its rescaling path) in the other lanes of `mask`.
 MLIB_INLINE void normalize(V* a, unsigned mask) {

@@ -4,8 +4,8 @@
 // Smith, Schlick and the energy-conserving diffuse) and the mirror rays of smooth surfaces.
 //
 // Invariant: every lane computes what pbr.h computes for one hit, bit for bit (hit_lanes.h):
-// std::clamp, std::min and std::max as the comparisons they are, the split-sum table and
-// the prefiltered maps read per lane at the coordinates the lanes compute. Which hits:
+// the split-sum table and the prefiltered maps read per lane at the coordinates the lanes
+// compute. Which hits:
 // physically based without texture or transmission (CompiledScene::plain_pbr).
 #pragma once
 
@@ -16,6 +16,7 @@
 
 #include "rt2/kernel/kernel.h"
 
+#include "rt2/kernel/environment_lanes.h"
 #include "rt2/kernel/hit_lanes.h"
 #include "rt2/kernel/pbr.h"  // kMirrorRoughness
 #include "rt2/shading/brdf.h"
@@ -25,11 +26,6 @@ namespace rt2::RT2_ISA {
 
 namespace lanes {
 
-// std::clamp(x, lo, hi), std::min(a, b) and std::max(a, b) as the standard defines them
-// (x < lo ? lo : hi < x ? hi : x; b < a ? b : a; a < b ? b : a), NaN included.
-MLIB_INLINE V clamp_std(V x, V lo, V hi) { return select(x < lo, lo, select(hi < x, hi, x)); }
-MLIB_INLINE V min_std(V a, V b) { return select(b < a, b, a); }
-MLIB_INLINE V max_std(V a, V b) { return select(a < b, b, a); }
 // brdf_lut.cpp's clamp01: x > 0 ? (x < 1 ? x : 1) : 0.
 MLIB_INLINE V clamp01(V x) {
   return select(x > V::broadcast(0.0f), select(x < V::broadcast(1.0f), x, V::broadcast(1.0f)),
@@ -59,52 +55,6 @@ MLIB_INLINE void split_sum(const SplitSumTable& t, V mu, V roughness, V& a, V& b
   const auto entry = [&](int k) { return V::load(e[k]); };
   a = mix(mix(entry(0), entry(2), tx), mix(entry(4), entry(6), tx), ty);
   b = mix(mix(entry(1), entry(3), tx), mix(entry(5), entry(7), tx), ty);
-}
-
-// Environment::irradiance(n) of each lane: sh9(n) against the coefficients, summed in their
-// order.
-MLIB_INLINE void irradiance(const IrradianceSh& sh, const V* n, V* e) {
-  const auto k = [](float c) { return V::broadcast(c); };
-  const V x = n[0], y = n[1], z = n[2];
-  const V basis[9] = {k(0.282095f),
-                      k(0.488603f) * y,
-                      k(0.488603f) * z,
-                      k(0.488603f) * x,
-                      k(1.092548f) * x * y,
-                      k(1.092548f) * y * z,
-                      k(0.315392f) * (k(3.0f) * z * z - k(1.0f)),
-                      k(1.092548f) * x * z,
-                      k(0.546274f) * (x * x - y * y)};
-  for (int c = 0; c < 3; ++c) {
-    e[c] = k(sh.c[0][c]) * basis[0];
-    for (std::size_t i = 1; i < 9; ++i) e[c] = e[c] + k(sh.c[i][c]) * basis[i];
-  }
-}
-
-// equirect.h's fast_atan2 and fast_acos, lane by lane.
-MLIB_INLINE V fast_atan2(V y, V x) {
-  constexpr float kPi = std::numbers::pi_v<float>;
-  const auto k = [](float c) { return V::broadcast(c); };
-  const V zero = k(0.0f);
-  const V ax = abs(x), ay = abs(y);
-  const V hi = max_std(ax, ay), lo = min_std(ax, ay);
-  const V z = lo / hi, z2 = z * z;
-  V a = z * (k(0.99997726f) + z2 * (k(-0.33262347f) + z2 * (k(0.19354346f) + z2 * (k(-0.11643287f) +
-             z2 * (k(0.05265332f) + z2 * k(-0.01172120f))))));
-  a = select(ay > ax, k(0.5f * kPi) - a, a);
-  a = select(x < zero, k(kPi) - a, a);
-  a = select(y < zero, negate(a), a);
-  return select(hi > zero, a, zero);  // (0, 0): 0
-}
-MLIB_INLINE V fast_acos(V x) {
-  constexpr float kPi = std::numbers::pi_v<float>;
-  const auto k = [](float c) { return V::broadcast(c); };
-  const V ax = min_std(abs(x), k(1.0f));
-  const V r = sqrt(k(1.0f) - ax) *
-              (k(1.5707963050f) + ax * (k(-0.2145988016f) + ax * (k(0.0889789874f) + ax * (k(-0.0501743046f) +
-               ax * (k(0.0308918810f) + ax * (k(-0.0170881256f) + ax * (k(0.0066700901f) +
-               ax * k(-0.0012624911f))))))));
-  return select(x < k(0.0f), k(kPi) - r, r);
 }
 
 // (1 - clamp(cos, 0, 1))^5 (brdf.h's schlick_weight).
@@ -167,22 +117,13 @@ inline void shade_pbr_lanes(const CompiledScene& sc, const RenderSettings& st, i
     const V d = dot_dpps(n, s.dir, s.ns_w_dir_w);
     V r[3];
     for (int c = 0; c < 3; ++c) r[c] = s.dir[c] - (k(2.0f) * n[c]) * d;
-    constexpr float kInvPi = std::numbers::inv_pi_v<float>;
-    const V u = (k(0.5f) + lanes::fast_atan2(r[0], negate(r[2])) * k(0.5f * kInvPi)) +
-                k(sc.environment.u_shift());
-    const V v = lanes::fast_acos(lanes::clamp_std(r[1], k(-1.0f), one)) * k(kInvPi);
-    alignas(64) float us[kHitLanes], vs[kHitLanes], rs[kHitLanes], spec[3][kHitLanes] = {};
-    u.store(us);
-    v.store(vs);
+    alignas(64) float us[kHitLanes], vs[kHitLanes], rs[kHitLanes];
+    lanes::map_uv(sc.environment, r, us, vs);
     roughness.store(rs);
-    for (unsigned m = rough; m; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      const vec4 x = sc.environment.specular_at(Uv{us[l], vs[l]}, rs[l]);
-      for (int c = 0; c < 3; ++c) spec[c][l] = x[c];
-    }
+    V spec[3];
+    lanes::specular(sc.environment, us, vs, rs, rough, spec);
     const M is = M::from_bits(rough);
-    for (int c = 0; c < 3; ++c)
-      local[c] = select(is, local[c] + V::load(spec[c]) * e_v[c], local[c]);
+    for (int c = 0; c < 3; ++c) local[c] = select(is, local[c] + spec[c] * e_v[c], local[c]);
   }
   {
     V out[3];

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -18,6 +19,7 @@
 #include "rt2/kernel/pbr.h"
 #include "rt2/kernel/phong.h"
 #include "rt2/kernel/phong_lanes.h"
+#include "rt2/kernel/environment_lanes.h"
 #include "rt2/kernel/pbr_lanes.h"
 #include "rt2/render/renderer.h"
 
@@ -86,6 +88,23 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
     for (std::size_t i = first; i < end && at_once; ++i)
       at_once = (shaded >> (i - first) & 1) || !b.hits[i].found();
     if (at_once) emit_lanes(sc, pass, samples + first, b);
+    // The environment's radiance along the misses, in lanes where there are several.
+    alignas(64) float sky[3][kHitLanes];
+    bool sky_lanes = false;
+    if (sc.has_environment && st.shading_lanes) {
+      unsigned misses = 0;
+      for (std::size_t i = first; i < end; ++i) misses |= unsigned(!b.hits[i].found()) << (i - first);
+      if ((sky_lanes = std::popcount(misses) > 1)) {
+        lanes::V dir[3], radiance[3];
+        for (int c = 0; c < 3; ++c) dir[c] = lanes::V::loadu(b.rays.columns().f(PathRays::kDir + c) + first);
+        alignas(64) float u[kHitLanes], v[kHitLanes];
+        lanes::map_uv(sc.environment, dir, u, v);
+        const EquirectMap* maps[kHitLanes];
+        std::fill(maps, maps + kHitLanes, &sc.environment.source_map());
+        lanes::bilinear(maps, u, v, misses, radiance);
+        lanes::store3(radiance, sky);
+      }
+    }
     for (std::size_t i = first; i < end; ++i) {
       if (shaded >> (i - first) & 1) {
         const int l = int(i - first);
@@ -96,9 +115,12 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
         continue;
       }
       if (!b.hits[i].found()) {
+        const int l = int(i - first);
         b.colors[samples[i]] +=
             b.rays.weight(i) *
-            (sc.has_environment ? sc.environment.radiance(b.rays.ray(i).dir) : sc.background);
+            (!sc.has_environment ? sc.background
+             : sky_lanes         ? vec4(sky[0][l], sky[1][l], sky[2][l])
+                                 : sc.environment.radiance(b.rays.ray(i).dir));
         continue;
       }
       const PathRay pr = b.rays[i];

@@ -83,7 +83,9 @@ class Environment {
   static Environment sky(const vec4& sun_direction, float intensity, float rotation_degrees);
 
   // The radiance arriving from direction `dir` (unit), i.e. the background: the source map.
-  vec4 radiance(const vec4& dir) const { return source_.bilinear(map_uv(dir)); }
+  vec4 radiance(const vec4& dir) const { return radiance_at(map_uv(dir)); }
+  // The same at the map coordinates of dir, map_uv(dir).
+  vec4 radiance_at(Uv uv) const { return source_.bilinear(uv); }
   // E(n) / pi for the unit normal n (see above).
   vec4 irradiance(const vec4& n) const {
     const std::array<float, 9> b = sh9(n);
