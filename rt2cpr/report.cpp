@@ -361,7 +361,8 @@ nlohmann::json Report::json() const {
                        {"lists", l.lists},
                        {"list_entries", l.list_entries},
                        {"unoccluded", l.unoccluded},
-                       {"in_simd_lanes", l.in_lanes}};
+                       {"in_simd_lanes", l.in_lanes},
+                       {"considered_in_simd_lanes", l.light_lanes}};
   const auto stage = [&](std::uint64_t rt2::StageTimes::*field) {
     return median_of(stages_, [&](const rt2::StageTimes& s) { return double(s.*field) * 1e-6; });
   };

@@ -3,6 +3,7 @@
 // Kt I_t. phong_lanes.h computes the same for up to 16 hits in one SIMD pass, bit for bit.
 #pragma once
 
+#include <bit>
 #include <cmath>
 
 #include "rt2/kernel/kernel.h"
@@ -15,10 +16,11 @@
 namespace rt2::RT2_ISA {
 
 // I_local = Ka I_amb into the sample now, and for each light of `lights` that reaches the
-// surface the term Kd I (L·N) + Ks I (R·V)^n into the shadow batch (light_terms.h).
+// surface the term Kd I (L·N) + Ks I (R·V)^n into the shadow batch (light_terms.h), with
+// `in_lanes` kLightLanes lights at a time where the list is long enough (the same bits).
 // `lights` holds every light in range, in scene order, whatever the culling.
 MLIB_INLINE void phong_lights(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
-                              LightList lights, float pixel_angle, Batches& b,
+                              LightList lights, float pixel_angle, bool in_lanes, Batches& b,
                               RayCounts& counts) {
   const Material& m = sc.materials[s.material];
   const vec4 weight = r.weight();
@@ -33,6 +35,33 @@ MLIB_INLINE void phong_lights(const CompiledScene& sc, const PathRay& r, const S
                              s.t * pixel_angle * tp.per_world);
   }
   const vec4 view = -r.ray.dir;
+  if (in_lanes && lights.count >= kMinLaneLights) {
+    add_light_terms_lanes(sc, r, s, s.ns, lights, b, counts,
+                          [&](const auto* l, auto l_w, auto n_dot_l, auto lit, auto* term) {
+      using V = decltype(l_w);
+      const auto k = [](float c) { return V::broadcast(c); };
+      for (int c = 0; c < 3; ++c) term[c] = k(kd[c]) * n_dot_l;
+      if (!m.has_specular()) return;
+      // R = 2 (N·L) N - L, its w lane included
+      const V twice = k(2.0f) * n_dot_l;
+      V rr[3];
+      for (int c = 0; c < 3; ++c) rr[c] = twice * k(s.ns[c]) - l[c];
+      const V v[3] = {k(view[0]), k(view[1]), k(view[2])};
+      const V r_dot_v = dot_dpps(rr, v, (twice * k(s.ns[3]) - l_w) * k(view[3]));
+      const auto shiny = lit & (r_dot_v > k(0.0f));
+      const unsigned bits = mlib::bits(shiny);
+      if (!bits) return;
+      alignas(64) float base[kLightLanes], power[kLightLanes] = {};
+      r_dot_v.store(base);
+      for (unsigned left = bits; left; left &= left - 1) {
+        const int j = std::countr_zero(left);
+        power[j] = std::pow(base[j], m.shininess);
+      }
+      const V pw = V::load(power);
+      for (int c = 0; c < 3; ++c) term[c] = select(shiny, term[c] + k(m.specular[c]) * pw, term[c]);
+    });
+    return;
+  }
   add_light_terms(sc, r, s, s.ns, lights, b, counts, [&](const vec4& l, float n_dot_l) -> vec4 {
     vec4 term = kd * n_dot_l;
     if (m.has_specular()) {
@@ -60,7 +89,7 @@ inline void phong_spawn(const CompiledScene& sc, const RenderSettings& st, int d
 MLIB_INLINE void shade_phong(const CompiledScene& sc, const RenderSettings& st, int depth,
                              const PathRay& r, const SurfacePoint& s, LightList lights,
                              float pixel_angle, Batches& b, RayCounts& counts) {
-  phong_lights(sc, r, s, lights, pixel_angle, b, counts);
+  phong_lights(sc, r, s, lights, pixel_angle, st.shading_lanes, b, counts);
   phong_spawn(sc, st, depth, r, s, b, counts);
 }
 

@@ -19,6 +19,7 @@ struct LightCounts {
   std::uint64_t points = 0, considered = 0, in_range = 0, lists = 0, list_entries = 0;
   std::uint64_t unoccluded = 0;  // shadow rays proven to pass whole, not traced
   std::uint64_t in_lanes = 0;    // shading points shaded in SIMD lanes (hit_lanes.h)
+  std::uint64_t light_lanes = 0; // lights considered kLightLanes at a time (light_terms.h)
   LightCounts& operator+=(const LightCounts& o) {
     points += o.points;
     considered += o.considered;
@@ -27,6 +28,7 @@ struct LightCounts {
     lists += o.lists;
     list_entries += o.list_entries;
     in_lanes += o.in_lanes;
+    light_lanes += o.light_lanes;
     return *this;
   }
 };

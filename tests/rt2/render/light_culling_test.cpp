@@ -88,6 +88,33 @@ TEST(LightCulling, EveryModeGivesTheBruteForceImageBitForBit) {
   }
 }
 
+// Long light lists are shaded kLightLanes lights at a time (light_terms.h's
+// add_light_terms_lanes): the same image, shadow rays and counts as one light at a time, on
+// every instruction set, without culling (every light at every point) and with lists.
+TEST(LightLanes, LightsInLanesGiveTheOneByOneImageAndRaysOnEveryIsa) {
+  for (std::size_t n : {12u, 300u, 3000u}) {
+    const Scene s = many_light_scene(n, unsigned(n) + 7);
+    for (const Mode& m : {Mode{LightCulling::none, LightLists::bvh, "none"}, kModes[2], kModes[4]})
+      for (Isa isa : test::runnable_isas()) {
+        RenderSettings st = small(m.culling, m.lists);
+        st.shading_lanes = false;
+        FrameResult one, lanes;
+        const Image ref = test::render_scene(s, st, {Backend::serial, 1, 1}, {}, isa, &one);
+        st.shading_lanes = true;
+        const Image img = test::render_scene(s, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
+        const std::string what = std::to_string(n) + " lights, " + m.name + ", " + isa_name(isa);
+        EXPECT_TRUE(identical(ref, img)) << what;
+        EXPECT_EQ(one.rays.shadow, lanes.rays.shadow) << what;
+        EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
+        EXPECT_EQ(one.rays.lights.unoccluded, lanes.rays.lights.unoccluded) << what;
+        EXPECT_EQ(one.rays.lights.light_lanes, 0u) << what;
+        // most lights are considered in lanes (12 lights culled make lists too short)
+        if (n > 12 || m.culling == LightCulling::none)
+          EXPECT_GT(lanes.rays.lights.light_lanes, lanes.rays.lights.considered / 2) << what;
+      }
+  }
+}
+
 // Blocks (the tiles of tiled culling), depth slices, samples and passes change the lists,
 // never the image.
 TEST(LightCulling, BlocksSlicesAndPassesGiveTheSameImage) {
