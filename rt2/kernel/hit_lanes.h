@@ -261,6 +261,29 @@ MLIB_INLINE void normalize(V* a, unsigned mask) {
   load3(out, a);
 }
 
+// (a, w) / |(a, w)| as vec4's normalize, its w lane included, in the lanes of `mask`.
+MLIB_INLINE void normalize(V* a, V& w, unsigned mask) {
+  const V len2 = dot_dpps(a, a, w * w);
+  const unsigned slow =
+      mask & ~mlib::bits((len2 >= V::broadcast(FLT_MIN)) & (len2 <= V::broadcast(FLT_MAX)));
+  alignas(64) float in[4][kHitLanes];
+  if (slow)
+    for (int c = 0; c < 4; ++c) (c < 3 ? a[c] : w).store(in[c]);
+  const V len = sqrt(len2);
+  for (int c = 0; c < 3; ++c) a[c] = a[c] / len;
+  w = w / len;
+  if (!slow) return;
+  alignas(64) float out[4][kHitLanes];
+  for (int c = 0; c < 4; ++c) (c < 3 ? a[c] : w).store(out[c]);
+  for (unsigned m = slow; m; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    const vec4 n = mlib::normalize(vec4(in[0][l], in[1][l], in[2][l], in[3][l]));
+    for (int c = 0; c < 4; ++c) out[c][l] = n[c];
+  }
+  for (int c = 0; c < 3; ++c) a[c] = V::load(out[c]);
+  w = V::load(out[3]);
+}
+
 }  // namespace lanes
 
 // The surface points of a pass's lanes (surface_at, per kind, then chosen per lane), with
@@ -376,7 +399,7 @@ MLIB_INLINE void each_material(const HitLanes& p, unsigned active, F&& f) {
 
 // Each light's shadow ray from the lanes of `active` (light_terms.h's add_light_terms):
 // its direction and length, the lanes in its range and those it lights (in range, in front
-// of the geometric and the shading normal), and for those `term(l, n_dot_l, lit, t)`, the
+// of the geometric and the shading normal), and for those `term(l, l_w, n_dot_l, lit, t)`, the
 // model's term per unit radiance into t, weighted here by the ray's weight and the light's
 // radiance and range window; into p.light[k].
 template <class Term>
@@ -402,7 +425,7 @@ MLIB_INLINE void light_lanes(const CompiledScene& sc, const SurfaceLanes& s, uns
     out.lit = mlib::bits(lit) & active;
     if (!out.lit) continue;
     V t[3], weighted[3];
-    term(l, n_dot_l, lit, t);
+    term(l, l_w, n_dot_l, lit, t);
     const vec4 radiance = light.radiance();
     if (light.has_range()) {
       const V x = dist / range, x2 = x * x, w = V::broadcast(1.0f) - x2 * x2;

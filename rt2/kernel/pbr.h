@@ -17,6 +17,7 @@
 
 #include "rt2/geometry/optics.h"
 #include "rt2/kernel/batches.h"
+#include "rt2/kernel/brdf_lanes.h"
 #include "rt2/kernel/light_terms.h"
 #include "rt2/kernel/secondary_rays.h"
 #include "rt2/render/renderer.h"
@@ -105,12 +106,13 @@ inline PbrPoint pbr_point(const CompiledScene& sc, const Material& m, const Surf
 }
 
 // Emission and the light from far away into the sample's colour now, every light's BRDF
-// term into the shadow batch (light_terms.h). `last` says that the ray is at the depth
+// term into the shadow batch (light_terms.h), with `in_lanes` kLightLanes lights at a time
+// where the list is long enough (the same bits). `last` says that the ray is at the depth
 // limit: a mirror then shows the prefiltered environment instead of the ray it cannot spawn
 // (rather than nothing, as Phong's does).
 inline void pbr_lights(const CompiledScene& sc, const PathRay& r, const SurfacePoint& s,
-                       LightList lights, float pixel_angle, bool last, Batches& b,
-                       RayCounts& counts, PbrPoint& out) {
+                       LightList lights, float pixel_angle, bool last, bool in_lanes,
+                       Batches& b, RayCounts& counts, PbrPoint& out) {
   const Material& m = sc.materials[s.material];
   const vec4 view = -r.ray.dir;
   out = pbr_point(sc, m, s, view, pixel_angle);
@@ -127,6 +129,26 @@ inline void pbr_lights(const CompiledScene& sc, const PathRay& r, const SurfaceP
   b.colors[r.sample] += weight * local;
   ++counts.lights.points;
   counts.lights.considered += lights.count;
+  if (in_lanes && lights.count >= kMinLaneLights) {
+    using V = lanes::V;
+    const auto k = [](float c) { return V::broadcast(c); };
+    lanes::BrdfColumns surface;
+    for (int c = 0; c < 3; ++c) {
+      surface.f0[c] = k(p.surface.f0[c]);
+      surface.diffuse_scale[c] = k(p.surface.diffuse_scale[c]);
+      surface.e_v[c] = k(e_v[c]);
+    }
+    surface.alpha = k(p.surface.alpha);
+    surface.roughness = k(p.surface.roughness);
+    const V n[3] = {k(p.n[0]), k(p.n[1]), k(p.n[2])}, v[3] = {k(view[0]), k(view[1]), k(view[2])};
+    const V n_dot_v = k(dot(p.n, view));
+    add_light_terms_lanes(sc, r, s, p.n, lights, b, counts,
+                          [&](const V* l, V l_w, V n_dot_l, V::bool_type lit, V* term) {
+      lanes::brdf_cos(split_sum_table(), surface, n, k(p.n[3]), v, k(view[3]), l, l_w, n_dot_v,
+                      n_dot_l, mlib::bits(lit), term);
+    });
+    return;
+  }
   add_light_terms(sc, r, s, p.n, lights, b, counts, [&](const vec4& l, float n_dot_l) -> vec4 {
     return brdf(p.surface, p.n, view, l, e_v) * n_dot_l;
   });
@@ -157,7 +179,7 @@ inline void pbr_spawn(const CompiledScene& sc, const RenderSettings& st, int dep
                                         LightList lights, float pixel_angle, Batches& b,
                                         RayCounts& counts) {
   PbrPoint p;
-  pbr_lights(sc, r, s, lights, pixel_angle, depth >= st.depth, b, counts, p);
+  pbr_lights(sc, r, s, lights, pixel_angle, depth >= st.depth, st.shading_lanes, b, counts, p);
   pbr_spawn(sc, st, depth, r, s, p, b, counts);
 }
 

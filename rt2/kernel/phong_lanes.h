@@ -69,7 +69,7 @@ inline void shade_phong_lanes(const CompiledScene& sc, const RenderSettings& st,
   const M shiny_material = (ks[0] > zero) | (ks[1] > zero) | (ks[2] > zero);
   V view[3];
   for (int c = 0; c < 3; ++c) view[c] = negate(s.dir[c]);
-  light_lanes(sc, s, active, p, [&](const V* l, V n_dot_l, M lit, V* term) {
+  light_lanes(sc, s, active, p, [&](const V* l, V, V n_dot_l, M lit, V* term) {
     for (int c = 0; c < 3; ++c) term[c] = kd[c] * n_dot_l;
     const V twice = V::broadcast(2.0f) * n_dot_l;
     V r[3];

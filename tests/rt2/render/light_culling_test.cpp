@@ -91,9 +91,20 @@ TEST(LightCulling, EveryModeGivesTheBruteForceImageBitForBit) {
 // Long light lists are shaded kLightLanes lights at a time (light_terms.h's
 // add_light_terms_lanes): the same image, shadow rays and counts as one light at a time, on
 // every instruction set, without culling (every light at every point) and with lists.
+// Phong and physically based materials alike (the PBR scene: every material turned pbr,
+// from a smooth metal to a rough dielectric).
 TEST(LightLanes, LightsInLanesGiveTheOneByOneImageAndRaysOnEveryIsa) {
-  for (std::size_t n : {12u, 300u, 3000u}) {
-    const Scene s = many_light_scene(n, unsigned(n) + 7);
+  for (std::size_t n : {12u, 300u, 3000u})
+    for (bool pbr : {false, true}) {
+    Scene s = many_light_scene(n, unsigned(n) + 7);
+    if (pbr)
+      for (std::size_t i = 0; i < s.materials.size(); ++i) {
+        Material& mat = s.materials[i];
+        mat.model = Shading::pbr;
+        mat.base_color = vec4(0.9f, 0.6f, 0.4f);
+        mat.metallic = float(i % 3) * 0.5f;
+        mat.roughness = float(i % 4) / 3.0f;
+      }
     for (const Mode& m : {Mode{LightCulling::none, LightLists::bvh, "none"}, kModes[2], kModes[4]})
       for (Isa isa : test::runnable_isas()) {
         RenderSettings st = small(m.culling, m.lists);
@@ -102,7 +113,8 @@ TEST(LightLanes, LightsInLanesGiveTheOneByOneImageAndRaysOnEveryIsa) {
         const Image ref = test::render_scene(s, st, {Backend::serial, 1, 1}, {}, isa, &one);
         st.shading_lanes = true;
         const Image img = test::render_scene(s, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
-        const std::string what = std::to_string(n) + " lights, " + m.name + ", " + isa_name(isa);
+        const std::string what = std::to_string(n) + " lights, " + m.name + ", " + isa_name(isa) +
+                                 (pbr ? ", pbr" : ", phong");
         EXPECT_TRUE(identical(ref, img)) << what;
         EXPECT_EQ(one.rays.shadow, lanes.rays.shadow) << what;
         EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
@@ -112,7 +124,7 @@ TEST(LightLanes, LightsInLanesGiveTheOneByOneImageAndRaysOnEveryIsa) {
         if (n > 12 || m.culling == LightCulling::none)
           EXPECT_GT(lanes.rays.lights.light_lanes, lanes.rays.lights.considered / 2) << what;
       }
-  }
+    }
 }
 
 // Blocks (the tiles of tiled culling), depth slices, samples and passes change the lists,
