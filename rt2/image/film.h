@@ -39,29 +39,42 @@ class Film {
   std::uint32_t samples(int x, int y) const { return samples_[index(x, y)]; }
 
   // Adds one sample's colour (lanes x y z) to pixel (x, y).
-  MLIB_INLINE void add(int x, int y, const vec4& color) {
+  MLIB_INLINE void add(int x, int y, const vec4& color) { add(x, y, &color, 1); }
+  // Adds `count` samples' colours to pixel (x, y), in their order: the same as `count`
+  // calls of add, with the pixel's state read and written once.
+  MLIB_INLINE void add(int x, int y, const vec4* colors, int count) {
     const std::size_t i = index(x, y);
     // Compensated (Kahan) summation.
-    const std::uint32_t n = samples_[i]++;
+    const std::uint32_t n = samples_[i];
+    vec4 sum, carry;
+    int k = 0;
     if (n == 0) {
-      sum_[i] = vec4() + (color - vec4());  // its compensation is sum - sum
-      return;
+      sum = vec4() + (colors[0] - vec4());  // from zeros; leaves sum - sum to carry
+      carry = sum - sum;
+      k = 1;
+    } else {
+      sum = sum_[i];
+      carry = n == 1 ? vec4(sum - sum) : carry_[i];
     }
-    const vec4 sum = sum_[i];
-    const vec4 carry = n == 1 ? vec4(sum - sum) : carry_[i];
-    const vec4 y_ = color - carry;
-    const vec4 t = sum + y_;
-    carry_[i] = (t - sum) - y_;
-    sum_[i] = t;
+    for (; k < count; ++k) {
+      const vec4 y_ = colors[k] - carry;
+      const vec4 t = sum + y_;
+      carry = (t - sum) - y_;
+      sum = t;
+    }
+    sum_[i] = sum;
+    if (n + std::uint32_t(count) > 1) carry_[i] = carry;
+    samples_[i] = n + std::uint32_t(count);
   }
 
   // Asks for the state of the pixels in columns [x0, x1) of rows [y0, y1) to be brought
   // into the caches, ahead of adding to them (a hint: the film of a frame is larger than
   // the caches, and a block's rays take long enough to hide the fetch): the counts and
-  // sums, and the compensations where the block's first pixel holds more than one sample.
-  void prefetch(int x0, int y0, int x1, int y1) const {
+  // sums, and the compensations where the block's first pixel will hold more than one
+  // sample once `adding` more are added.
+  void prefetch(int x0, int y0, int x1, int y1, int adding) const {
     const int lines = ((x1 - x0) * int(sizeof(vec4)) + 63) / 64 + 1;
-    const bool carried = samples_[index(x0, y0)] > 1;
+    const bool carried = samples_[index(x0, y0)] + std::uint32_t(adding) > 1;
     for (int y = y0; y < y1; ++y) {
       mlib::prefetch_for_write(&sum_[index(x0, y)], lines);
       if (carried) mlib::prefetch_for_write(&carry_[index(x0, y)], lines);

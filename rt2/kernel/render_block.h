@@ -26,10 +26,9 @@ namespace rt2::RT2_ISA {
 
 // Each sample's colour added to the film, samples in index order.
 inline void add_to_film(const Tile& block, int samples, const Batches& b, Film& film) {
-  std::size_t i = 0;
+  const vec4* colors = b.colors.data();
   for (int y = block.y0; y < block.y1; ++y)
-    for (int x = block.x0; x < block.x1; ++x)
-      for (int k = 0; k < samples; ++k) film.add(x, y, b.colors[i++]);
+    for (int x = block.x0; x < block.x1; ++x, colors += samples) film.add(x, y, colors, samples);
 }
 
 // Samples [s0, s1) of the pixels of `block` (at most RenderSettings::block squared) into the
@@ -55,7 +54,7 @@ void render_block(const Renderer& r, const Tile& block, int s0, int s1, Film& fi
   const std::size_t n = std::size_t(block.x1 - block.x0) * std::size_t(block.y1 - block.y0) *
                         std::size_t(samples);
   b.colors.assign(n, vec4());
-  film.prefetch(block.x0, block.y0, block.x1, block.y1);  // for the film stage
+  film.prefetch(block.x0, block.y0, block.x1, block.y1, samples);  // for the film stage
   // 1. generate: one primary ray per sample
   generate(r, block, s0, s1, b);
   counts.primary += n;

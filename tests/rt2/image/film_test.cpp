@@ -1,7 +1,8 @@
 // The film (rt2/image/film.h) against a plain compensated sum kept here: a pixel's mean is
 // the same bits whatever the film's memory held before it was cleared, with the first
 // sample added without reading the sums and the second taking the compensation the first
-// one left, NaN, infinities and signed zeros included.
+// one left, NaN, infinities and signed zeros included; samples added together as one by
+// one.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -105,6 +106,24 @@ TEST(Film, ClearingATileDropsItsSamplesOnlyAndItsPixelsStartFromZero) {
   EXPECT_EQ(film.samples(0, 0), 2u);
   EXPECT_TRUE(same_bits(&image.rgb[std::size_t(2 * 6 + 3) * 3], a, 3));  // cleared
   EXPECT_TRUE(same_bits(&image.rgb[0], b, 3));                            // kept
+}
+
+TEST(Film, SamplesAddedTogetherEqualSamplesAddedOneByOneInEveryPass) {
+  constexpr int w = 5, h = 4;
+  Film one(w, h), together(w, h);
+  for (int count : {1, 3, 2, 4}) {  // passes of 1, 3, 2 and 4 samples per pixel
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        std::vector<vec4> colors;
+        for (int k = 0; k < count; ++k) colors.push_back(sample(y * w + x, k + count));
+        for (const vec4& c : colors) one.add(x, y, c);
+        together.add(x, y, colors.data(), count);
+      }
+    Image a, b;
+    EXPECT_EQ(one.resolve(a), together.resolve(b)) << count;
+    EXPECT_TRUE(same_bits(a.rgb.data(), b.rgb.data(), w * h * 3)) << count;
+    EXPECT_EQ(one.samples(w - 1, h - 1), together.samples(w - 1, h - 1));
+  }
 }
 
 }  // namespace
