@@ -530,8 +530,8 @@ std::optional<Options> parse_options(int argc, char** argv) {
   app.add_option("--packets", packets, "on: coherent rays walk the BVH 16 at a time | off: "
                                        "one by one (the image is the same)");
   app.add_option("--shading-lanes", shading_lanes,
-                 "on: Phong and PBR hits are shaded 4, 8 or 16 at a time (SIMD) | off: one by one (the "
-                 "image is the same)");
+                 "on: Phong and PBR hits, a point's lights and the misses' sky are shaded 4, 8 or 16 "
+                 "at a time (SIMD) | off: one by one (the image is the same)");
   integer("--frames", std::to_string(o.frames), "frames to render (timing: median, min, max)");
   integer("--passes", std::to_string(o.render.passes),
           "render each pixel's samples in this many passes over the image, 1 ... subpixels "

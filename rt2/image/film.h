@@ -41,8 +41,9 @@ class Film {
   // Adds one sample's colour (lanes x y z) to pixel (x, y).
   MLIB_INLINE void add(int x, int y, const vec4& color) { add(x, y, &color, 1); }
   // Adds `count` samples' colours to pixel (x, y), in their order: the same as `count`
-  // calls of add, with the pixel's state read and written once.
+  // calls of add, with the pixel's state read and written once. Nothing for count <= 0.
   MLIB_INLINE void add(int x, int y, const vec4* colors, int count) {
+    if (count <= 0) return;
     const std::size_t i = index(x, y);
     // Compensated (Kahan) summation.
     const std::uint32_t n = samples_[i];

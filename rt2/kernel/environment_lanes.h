@@ -109,7 +109,8 @@ MLIB_INLINE void bilinear(const EquirectMap* const* maps, const float* u, const 
   }
 }
 
-// Environment::specular_at({u[l], v[l]}, roughness[l]) for the lanes of `mask`, into out.
+// Environment::specular_at({u[l], v[l]}, roughness[l]) for the lanes of `mask` (their
+// roughness a number, as Scene::validate ensures), into out.
 MLIB_INLINE void specular(const Environment& env, const float* u, const float* v,
                           const float* roughness, unsigned mask, V* out) {
   constexpr int kLevels = Environment::kSpecularLevels;
@@ -117,7 +118,8 @@ MLIB_INLINE void specular(const Environment& env, const float* u, const float* v
   const EquirectMap* hi[kHitLanes];
   alignas(64) float f[kHitLanes];
   for (int l = 0; l < kHitLanes; ++l) {
-    const float x = std::clamp(roughness[l], 0.0f, 1.0f) * float(kLevels - 1);
+    // lanes outside `mask` read level 0's size only
+    const float x = mask >> l & 1 ? std::clamp(roughness[l], 0.0f, 1.0f) * float(kLevels - 1) : 0.0f;
     const int level = std::min(int(x), kLevels - 2);
     lo[l] = &env.specular_map(level);
     hi[l] = &env.specular_map(level + 1);

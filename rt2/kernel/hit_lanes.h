@@ -294,7 +294,6 @@ struct SurfaceLanes {
   V pos[3], ng[3], ns[3];  // surface_at's p, ng, ns, facing the ray
   V above[3];              // where secondary rays start (offset.h)
   V ns_w_dir_w;            // ns.w x dir.w (+0 or -0) for dot products with the direction
-  lanes::M entering;       // the ray hit the outside (against the outward normal)
 };
 
 // The surface points of the lanes filled by gather_lanes, for rays first ... first +
@@ -370,7 +369,6 @@ MLIB_INLINE void surface_lanes(const CompiledScene& sc, const PathRays& rays, st
   // Facing the ray: both normals flipped where it hit the back (their w becomes -0), and an
   // interpolated normal that faces away replaced by the geometric one.
   const M entering = dot_dpps(dir, ng, zero) < zero;
-  out.entering = entering;
   for (int c = 0; c < 3; ++c) {
     ng[c] = select(entering, ng[c], negate(ng[c]));
     ns[c] = select(entering, ns[c], negate(ns[c]));

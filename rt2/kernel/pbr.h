@@ -141,11 +141,11 @@ inline void pbr_lights(const CompiledScene& sc, const PathRay& r, const SurfaceP
     surface.alpha = k(p.surface.alpha);
     surface.roughness = k(p.surface.roughness);
     const V n[3] = {k(p.n[0]), k(p.n[1]), k(p.n[2])}, v[3] = {k(view[0]), k(view[1]), k(view[2])};
-    const V n_dot_v = k(dot(p.n, view));
+    const V n_dot_v_raw = k(dot(p.n, view));  // brdf's n·v, not clamped
     add_light_terms_lanes(sc, r, s, p.n, lights, b, counts,
                           [&](const V* l, V l_w, V n_dot_l, V::bool_type lit, V* term) {
-      lanes::brdf_cos(split_sum_table(), surface, n, k(p.n[3]), v, k(view[3]), l, l_w, n_dot_v,
-                      n_dot_l, mlib::bits(lit), term);
+      lanes::brdf_cos(split_sum_table(), surface, n, k(p.n[3]), v, k(view[3]), l, l_w,
+                      n_dot_v_raw, n_dot_l, mlib::bits(lit), term);
     });
     return;
   }

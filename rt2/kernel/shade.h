@@ -71,7 +71,7 @@ inline void shade_hits(const Renderer& r, bool lists, int depth, Batches& b, Ray
     if (in_lanes) {
       // a pass shades the Phong hits in lanes, or, when it has none, the physically based
       // ones
-      shaded = gather_lanes(sc, sc.plain_phong.data(), b, first, end, pass);
+      if (sc.any_plain_phong) shaded = gather_lanes(sc, sc.plain_phong.data(), b, first, end, pass);
       if (shaded) {
         shade_phong_lanes(sc, st, depth, shaded, b.rays, first, pass);
       } else if (sc.any_plain_pbr) {

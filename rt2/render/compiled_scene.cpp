@@ -62,6 +62,7 @@ CompiledScene CompiledScene::compile(const Scene& scene, const BvhConfig& config
     const Material& m = c.materials[i];
     c.plain_phong[i] = m.plain_phong();
     c.plain_pbr[i] = m.plain_pbr();
+    c.any_plain_phong |= m.plain_phong();
     c.any_plain_pbr |= m.plain_pbr();
     if (m.model != Shading::phong || m.transparency > 0.0f) c.one_ray_per_sample = false;
   }

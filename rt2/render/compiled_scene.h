@@ -31,9 +31,9 @@ struct CompiledScene {
   // (the same at every point: prepared once here instead of per shaded point).
   std::vector<PbrSurface> pbr_surfaces;
   // Per material, Material::plain_phong() and plain_pbr() (1 or 0): read per hit by the
-  // shading lanes; whether any material is plain_pbr.
+  // shading lanes; whether any material is plain_phong, plain_pbr.
   std::vector<std::uint8_t> plain_phong, plain_pbr;
-  bool any_plain_pbr = false;
+  bool any_plain_phong = false, any_plain_pbr = false;
   // Whether no hit can spawn two secondary rays (every material Phong without transparency:
   // a transparent one refracts and reflects, any other model may spawn two): then a batch of
   // the render kernel holds at most one ray per sample.

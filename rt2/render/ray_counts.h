@@ -36,7 +36,7 @@ struct LightCounts {
 // Nanoseconds spent in each stage of the kernel (rt2/kernel/render_block.h), summed over the
 // threads, when RenderSettings::stage_times is on: generating primary rays, intersecting,
 // finding each point's lights (lists and light-tree walks), shading (surface points, light
-// terms, secondary rays, film), shadow rays.
+// terms, secondary rays, the sky of misses), shadow rays, adding the samples to the film.
 struct StageTimes {
   std::uint64_t generate = 0, intersect = 0, lights = 0, shade = 0, shadow = 0, film = 0;
   std::uint64_t total() const { return generate + intersect + lights + shade + shadow + film; }

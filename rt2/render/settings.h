@@ -43,9 +43,11 @@ struct RenderSettings {
   // The image does not depend on it.
   bool packets = true;
   // Phong and physically based hits without texture or transparency are shaded
-  // kWidestLanes at a time in one SIMD pass (rt2/kernel/hit_lanes.h) when every hit considers every light (no light lists)
-  // and there are at most kMaxLaneLights (8) lights; false: one hit at a time. The image
-  // does not depend on it.
+  // kWidestLanes at a time in one SIMD pass (rt2/kernel/hit_lanes.h) when every hit
+  // considers every light (no light lists) and there are at most kMaxLaneLights (8) lights;
+  // a point with 4 or more lights to consider evaluates them kWidestLanes at a time
+  // (rt2/kernel/light_terms.h); a pass's misses read the sky in lanes. false: one hit, one
+  // light, one miss at a time. The image does not depend on it.
   bool shading_lanes = true;
   // Lights: which ones each shading point considers (tiled and clustered culling use the
   // lists for primary hits and the light tree for the others), how the lists are filled,

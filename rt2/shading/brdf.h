@@ -56,7 +56,7 @@ inline float smith_visibility(float n_dot_v, float n_dot_l, float alpha) {
   return denom > 0.0f ? 0.5f / denom : 0.0f;
 }
 
-// (1 - cos)^5 with cos clamped to [0, 1] (NaN gives 1 - 0 = 1: the grazing value).
+// (1 - cos)^5 with cos clamped to [0, 1] by std::clamp (NaN stays NaN).
 inline float schlick_weight(float cos_theta) {
   const float m = 1.0f - std::clamp(cos_theta, 0.0f, 1.0f);
   const float m2 = m * m;
@@ -97,7 +97,7 @@ inline void set_diffuse(PbrSurface& s, const vec4& diffuse) {
 
 // glTF's metallic-roughness: F0 = 0.04 (1 - metallic) + base_color metallic (0.04: the
 // reflectance of a dielectric of refractive index 1.5). metallic and roughness are
-// clamped to [0, 1]; NaN becomes 0.
+// clamped to [0, 1] by std::clamp (NaN stays NaN; Scene::validate rejects it).
 inline PbrSurface pbr_surface(const vec4& base_color, float metallic, float roughness) {
   const float m = std::clamp(metallic, 0.0f, 1.0f);
   const float r = std::clamp(roughness, 0.0f, 1.0f);

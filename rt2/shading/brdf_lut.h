@@ -29,7 +29,7 @@ struct SplitSum {
 SplitSum split_sum(float n_dot_v, float roughness);
 
 // The table itself, for lookups that must return what split_sum returns (the shading
-// lanes, rt2/kernel/pbr_lanes.h): entry[j kMu + i] for column i and roughness row j.
+// lanes, rt2/kernel/brdf_lanes.h): entry[j kMu + i] for column i and roughness row j.
 struct SplitSumTable {
   static constexpr int kMu = 64;          // columns, over sqrt(mu)
   static constexpr int kRoughness = 64;   // rows, over roughness

@@ -105,7 +105,7 @@ class Environment {
     return a + (b - a) * (x - float(k));
   }
 
-  // What the lookups read, for the shading lanes (rt2/kernel/pbr_lanes.h), which compute
+  // What the lookups read, for the shading lanes (rt2/kernel/environment_lanes.h), which compute
   // the same bits: the coefficients, and map_uv's shift in u.
   const IrradianceSh& irradiance_sh() const { return irradiance_; }
   float u_shift() const { return u_shift_; }

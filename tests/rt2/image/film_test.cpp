@@ -1,8 +1,9 @@
 // The film (rt2/image/film.h) against a plain compensated sum kept here: a pixel's mean is
 // the same bits whatever the film's memory held before it was cleared, with the first
 // sample added without reading the sums and the second taking the compensation the first
-// one left, NaN, infinities and signed zeros included; samples added together as one by
-// one.
+// one left (signed zeros, tiny and huge values among the samples; a pixel that meets NaN or
+// an infinity resolves to black and is counted either way); samples added together as one
+// by one.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -105,7 +105,9 @@ TEST(LightLanes, LightsInLanesGiveTheOneByOneImageAndRaysOnEveryIsa) {
         mat.metallic = float(i % 3) * 0.5f;
         mat.roughness = float(i % 4) / 3.0f;
       }
-    for (const Mode& m : {Mode{LightCulling::none, LightLists::bvh, "none"}, kModes[2], kModes[4]})
+    for (const Mode& m : {Mode{LightCulling::none, LightLists::bvh, "none"},
+                          Mode{LightCulling::clustered, LightLists::bvh, "clustered/bvh"},
+                          Mode{LightCulling::bvh, LightLists::bvh, "bvh"}})
       for (Isa isa : test::runnable_isas()) {
         RenderSettings st = small(m.culling, m.lists);
         st.shading_lanes = false;
@@ -121,8 +123,9 @@ TEST(LightLanes, LightsInLanesGiveTheOneByOneImageAndRaysOnEveryIsa) {
         EXPECT_EQ(one.rays.lights.unoccluded, lanes.rays.lights.unoccluded) << what;
         EXPECT_EQ(one.rays.lights.light_lanes, 0u) << what;
         // most lights are considered in lanes (12 lights culled make lists too short)
-        if (n > 12 || m.culling == LightCulling::none)
+        if (n > 12 || m.culling == LightCulling::none) {
           EXPECT_GT(lanes.rays.lights.light_lanes, lanes.rays.lights.considered / 2) << what;
+        }
       }
     }
 }

@@ -272,8 +272,9 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
 // metal (roughness 0: mirror rays), the sphere at exactly the mirror threshold, and a row of
 // spheres from rough dielectric to rough metal, one emissive, one transmissive (shaded one
 // by one between lanes of its pass), an icosphere with vertex normals and a Phong floor
-// (passes that mix the models); under a rotated sky, or none (a uniform environment).
-Scene pbr_lanes_scene(bool sky) {
+// (passes that mix the models), or with `pbr_floor` a rough physically based floor (every
+// lane a PBR one); under a rotated sky, or none (a uniform environment).
+Scene pbr_lanes_scene(bool sky, bool pbr_floor = false) {
   Scene s = make_default_scene();
   const auto pbr = [](vec4 base, float metallic, float roughness) {
     Material m;
@@ -299,6 +300,7 @@ Scene pbr_lanes_scene(bool sky) {
   s.meshes.push_back(make_icosphere(vec4(-0.45f, 0.2f, 0.35f), 0.2f, 2,
                                     s.add_material("ico", pbr(vec4(0.6f, 0.9f, 0.6f), 0.2f, 0.4f))));
   if (sky) s.environment = EnvironmentDesc{"", 1.3f, 37.0f, vec4(0.4f, 0.6f, -0.5f)};
+  if (pbr_floor) s.materials[s.plane_materials[0]] = pbr(vec4(0.6f, 0.6f, 0.55f), 0.0f, 0.8f);
   return s;
 }
 
@@ -317,6 +319,8 @@ TEST(RenderCore, PbrShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdge
   std::vector<Case> cases;
   for (bool sky : {false, true})
     for (int depth : {1, 8}) cases.push_back({"sky " + std::to_string(sky), pbr_lanes_scene(sky), depth, true});
+  // no Phong material: the lanes that most points take are PBR ones
+  cases.push_back({"all pbr", pbr_lanes_scene(true, true), 4, true});
   for (std::size_t lights : {0u, 8u, 9u}) {
     Scene s = pbr_lanes_scene(true);
     if (lights == 0)
