@@ -36,6 +36,7 @@
 #include "rt2/base/version.h"
 #include "tests/bench/bench_util.h"
 #include "tests/bench/face_locator.h"
+#include "tests/bench/peak_memory.h"
 #include "tests/bench/trace_runner.h"
 #if defined(RT2_HAVE_EMBREE)
 #include "tests/bench/embree_runner.h"
@@ -319,7 +320,7 @@ Agreement compare(const RaySet& set, const Runner& a, const Runner& b, float sca
 //       kernels' instruction set, the widest the CPU runs unless --isa forces one)
 //   embree=3.13.5 embree_native_ray16=1 embree_tasking=tbb  (or embree=none / embree=off)
 //   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
-//       bytes=... bytes_per_tri=... sah_nodes=... sah_leaves=...
+//       bytes=... bytes_per_tri=... peak_mb=... sah_nodes=... sah_leaves=...
 //       (and engine=embree test=T lines, then ratio lines)
 //   mesh=M set=S engine=E test=T threads=K rays=... mrays_median=... mrays_min=...
 //       mrays_max=... hits=... [nodes_per_ray=... triangles_per_ray=...; rt2_packets adds
@@ -397,7 +398,8 @@ const char* test_name(bool watertight) { return watertight ? "watertight" : "fas
 // with the next engine (see build_and_report).
 // Bytes per triangle: rt2's accel_bytes; Embree's net bytes allocated during rtcCommitScene
 // (its memory monitor: BVH and leaf triangles; the shared vertex and index arrays are the
-// application's).
+// application's). peak_mb: the largest growth of the resident set during one build, its
+// scratch memory included (tests/bench/peak_memory.h; the most over the reps).
 // Tree cost: rt2's sah_nodes and sah_leaves (Accel::tree_sah) are the statistics Embree
 // prints for its own tree with --embree-config verbose=3 ("getAABBNodes : sah = ..." and
 // "leaves : sah = ..."): the inner nodes and the leaf blocks a random line through the
@@ -493,6 +495,7 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
   rt2::Accel acc;
   std::vector<std::vector<double>> embree_ms(2);
   std::vector<long long> embree_bytes(2, 0);
+  std::size_t rt2_peak = 0, embree_peak[2] = {0, 0};  // the largest over the reps
 #if defined(RT2_HAVE_EMBREE)
   // One thread: Embree's TBB scheduler is capped by a process-wide tbb::global_control,
   // which would cap bench_trace's own loops too, so this device is released before any
@@ -508,9 +511,11 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
   std::vector<std::function<void()>> builds;
   builds.push_back([&] {
     acc = rt2::Accel{};
+    const bench::PeakMemory peak;
     const auto t0 = std::chrono::steady_clock::now();
     acc = rt2::Accel::build(m.scene, rt2::BvhConfig{}, o.isa);
     rt2_ms.push_back(ms_since(t0));
+    rt2_peak = std::max(rt2_peak, peak.bytes());
   });
 #if defined(RT2_HAVE_EMBREE)
   if (dev)
@@ -518,10 +523,12 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
       builds.push_back([&, watertight] {
         RTCScene s = bench::embree_scene(dev, m.mesh(), watertight);
         bench::g_embree_bytes = 0;
+        const bench::PeakMemory peak;
         const auto t1 = std::chrono::steady_clock::now();
         rtcCommitScene(s);
         if (o.instanced) s = bench::embree_instance_of(dev, s, m.scene.instances[0], watertight);
         embree_ms[watertight].push_back(ms_since(t1));
+        embree_peak[watertight] = std::max(embree_peak[watertight], peak.bytes());
         embree_bytes[watertight] = bench::g_embree_bytes;
         rtcReleaseScene(s);
       });
@@ -535,11 +542,12 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
   const std::size_t bytes = rt2::accel_bytes(acc);
   const rt2::WideSah sah = acc.tree_sah();
   std::printf("mesh=%s tris=%zu set=build engine=rt2 threads=1 reps=%d build_ms_median=%.2f "
-              "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f isa=%s "
-              "width=%d nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f sah_nodes=%.3f "
+              "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f peak_mb=%.1f "
+              "isa=%s width=%d nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f sah_nodes=%.3f "
               "sah_leaves=%.3f\n",
               m.name.c_str(), m.tris, o.build_reps, r.median, r.min, r.max, bytes,
-              double(bytes) / double(m.tris), rt2::isa_name(acc.isa), rt2::bvh_width(acc.isa),
+              double(bytes) / double(m.tris), double(rt2_peak) / 1e6, rt2::isa_name(acc.isa),
+              rt2::bvh_width(acc.isa),
               acc.wide_nodes, acc.stats.leaves, acc.blocks.size(),
               double(m.tris) / (4.0 * double(acc.blocks.size())), sah.nodes, sah.leaves);
   for (bool watertight : o.tests) {
@@ -548,9 +556,9 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
     const long long eb = embree_bytes[watertight];
     std::printf("mesh=%s tris=%zu set=build engine=embree test=%s threads=1 reps=%d "
                 "build_ms_median=%.2f build_ms_min=%.2f build_ms_max=%.2f bytes=%lld "
-                "bytes_per_tri=%.1f\n",
+                "bytes_per_tri=%.1f peak_mb=%.1f\n",
                 m.name.c_str(), m.tris, test_name(watertight), o.build_reps, e.median, e.min,
-                e.max, eb, double(eb) / double(m.tris));
+                e.max, eb, double(eb) / double(m.tris), double(embree_peak[watertight]) / 1e6);
     std::printf("mesh=%s set=build test=%s threads=1 ratio=%.3f\n", m.name.c_str(),
                 test_name(watertight), r.median > 0 ? e.median / r.median : 0.0);
   }
