@@ -5,14 +5,11 @@
 //
 // Invariant: every lane computes what pbr.h computes for one hit, bit for bit (hit_lanes.h):
 // the split-sum table and the prefiltered maps read per lane at the coordinates the lanes
-// compute. Which hits:
-// physically based without texture or transmission (CompiledScene::plain_pbr).
+// compute. Which hits: physically based without texture or transmission
+// (CompiledScene::plain_pbr).
 #pragma once
 
-#include <algorithm>
-#include <bit>
 #include <cstdint>
-#include <numbers>
 
 #include "rt2/kernel/kernel.h"
 
@@ -24,7 +21,6 @@
 #include "rt2/shading/environment.h"
 
 namespace rt2::RT2_ISA {
-
 
 // The physically based pass over the lanes of `active` (filled by gather_lanes) for rays
 // first ... first + kHitLanes - 1 of `rays`: p's results, for a scene whose every hit

@@ -16,11 +16,11 @@
 #include "rt2/kernel/kernel.h"
 
 #include "rt2/kernel/batches.h"
+#include "rt2/kernel/environment_lanes.h"
 #include "rt2/kernel/pbr.h"
+#include "rt2/kernel/pbr_lanes.h"
 #include "rt2/kernel/phong.h"
 #include "rt2/kernel/phong_lanes.h"
-#include "rt2/kernel/environment_lanes.h"
-#include "rt2/kernel/pbr_lanes.h"
 #include "rt2/render/renderer.h"
 
 namespace rt2::RT2_ISA {
