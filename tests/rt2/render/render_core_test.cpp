@@ -202,6 +202,38 @@ Scene inside_mirror(bool shell) {
   return s;
 }
 
+// `scene` rendered with the shading lanes on and off (every hit considering every light, at
+// `depth`), on every instruction set and with both triangle tests: the same image, rays and
+// light counts; with `lanes_expected`, most shading points taken by the lanes, else none.
+void expect_lanes_match_one_by_one(const Scene& scene, int depth, bool lanes_expected,
+                                   const std::string& name) {
+  for (Isa isa : test::runnable_isas())
+    for (bool watertight : {false, true}) {
+      RenderSettings st = settings(2, 1, 7);
+      st.depth = depth;
+      st.watertight = watertight;
+      st.light_culling = LightCulling::none;  // every hit considers every light
+      st.shading_lanes = false;
+      FrameResult one, lanes;
+      const Image ref = test::render_scene(scene, st, {Backend::serial, 1, 1}, {}, isa, &one);
+      st.shading_lanes = true;
+      const Image img = test::render_scene(scene, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
+      const std::string what =
+          name + " " + isa_name(isa) + " watertight " + std::to_string(watertight);
+      EXPECT_TRUE(identical(ref, img)) << what;
+      EXPECT_EQ(one.rays.total(), lanes.rays.total()) << what;
+      EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
+      EXPECT_EQ(one.rays.lights.points, lanes.rays.lights.points) << what;
+      EXPECT_EQ(one.rays.lights.considered, lanes.rays.lights.considered) << what;
+      // The property is the lanes': most hits must take them where they can.
+      EXPECT_EQ(one.rays.lights.in_lanes, 0u) << what;
+      if (lanes_expected)
+        EXPECT_GT(lanes.rays.lights.in_lanes, lanes.rays.lights.points / 2) << what;
+      else
+        EXPECT_EQ(lanes.rays.lights.in_lanes, 0u) << what;
+    }
+}
+
 // The shading lanes (RenderSettings::shading_lanes) compute what the one-hit step
 // computes: the image is the same bits with them on or off, on every instruction set, with
 // both triangle tests, supersampling and deep mirrors; with lights up to the lanes' limit
@@ -241,31 +273,8 @@ TEST(RenderCore, ShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdges) 
   lowered.planes[0].d = 0.1f;
   cases.push_back({"built-in, floor lowered", lowered, 1, true});
   for (const Case& c : cases)
-    for (Isa isa : test::runnable_isas())
-      for (bool watertight : {false, true}) {
-        RenderSettings st = settings(2, 1, 7);
-        st.depth = 10;
-        st.watertight = watertight;
-        st.light_culling = LightCulling::none;  // every hit considers every light
-        st.shading_lanes = false;
-        FrameResult one, lanes;
-        const Image ref = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &one);
-        st.shading_lanes = true;
-        const Image img = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
-        const std::string what = std::string(c.name) + " lights " + std::to_string(c.lights) + " " +
-                                 isa_name(isa) + " watertight " + std::to_string(watertight);
-        EXPECT_TRUE(identical(ref, img)) << what;
-        EXPECT_EQ(one.rays.total(), lanes.rays.total()) << what;
-        EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
-        EXPECT_EQ(one.rays.lights.points, lanes.rays.lights.points) << what;
-        EXPECT_EQ(one.rays.lights.considered, lanes.rays.lights.considered) << what;
-        // The property is the lanes': most hits must take them where they can.
-        EXPECT_EQ(one.rays.lights.in_lanes, 0u) << what;
-        if (c.lanes_expected)
-          EXPECT_GT(lanes.rays.lights.in_lanes, lanes.rays.lights.points / 2) << what;
-        else
-          EXPECT_EQ(lanes.rays.lights.in_lanes, 0u) << what;
-      }
+    expect_lanes_match_one_by_one(c.scene, 10, c.lanes_expected,
+                                  std::string(c.name) + " lights " + std::to_string(c.lights));
 }
 
 // The built-in scene in physically based materials, for the PBR lanes: the chair a smooth
@@ -346,30 +355,8 @@ TEST(RenderCore, PbrShadingLanesOnOrOffGiveIdenticalImagesOnEveryIsaAndAtTheEdge
     cases.push_back({"inside a smooth sphere", s, 6, true});
   }
   for (const Case& c : cases)
-    for (Isa isa : test::runnable_isas())
-      for (bool watertight : {false, true}) {
-        RenderSettings st = settings(2, 1, 7);
-        st.depth = c.depth;
-        st.watertight = watertight;
-        st.light_culling = LightCulling::none;  // every hit considers every light
-        st.shading_lanes = false;
-        FrameResult one, lanes;
-        const Image ref = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &one);
-        st.shading_lanes = true;
-        const Image img = test::render_scene(c.scene, st, {Backend::serial, 1, 1}, {}, isa, &lanes);
-        const std::string what = c.name + " depth " + std::to_string(c.depth) + " " +
-                                 isa_name(isa) + " watertight " + std::to_string(watertight);
-        EXPECT_TRUE(identical(ref, img)) << what;
-        EXPECT_EQ(one.rays.total(), lanes.rays.total()) << what;
-        EXPECT_EQ(one.rays.lights.in_range, lanes.rays.lights.in_range) << what;
-        EXPECT_EQ(one.rays.lights.points, lanes.rays.lights.points) << what;
-        EXPECT_EQ(one.rays.lights.considered, lanes.rays.lights.considered) << what;
-        EXPECT_EQ(one.rays.lights.in_lanes, 0u) << what;
-        if (c.lanes_expected)
-          EXPECT_GT(lanes.rays.lights.in_lanes, lanes.rays.lights.points / 2) << what;
-        else
-          EXPECT_EQ(lanes.rays.lights.in_lanes, 0u) << what;
-      }
+    expect_lanes_match_one_by_one(c.scene, c.depth, c.lanes_expected,
+                                  c.name + " depth " + std::to_string(c.depth));
 }
 
 TEST(RenderCore, EightPassesOfOneSampleEqualOnePassOfEight) {
