@@ -32,6 +32,10 @@ struct vfloat16 {
   MLIB_INLINE static vfloat16 load(const float* p) { return {_mm512_load_ps(p)}; }  // 64-byte aligned
   MLIB_INLINE void store(float* p) const { _mm512_store_ps(p, v); }
   MLIB_INLINE static vfloat16 loadu(const void* p) { return {_mm512_loadu_ps(p)}; }  // any alignment
+  // Lane i = p[i] as a float (16 bytes, any alignment).
+  MLIB_INLINE static vfloat16 from_bytes(const std::uint8_t* p) {
+    return {_mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))))};
+  }
   // p[0 ... 3] in every four lanes.
   MLIB_INLINE static vfloat16 broadcast_quad(const float* p) {
     return {_mm512_broadcast_f32x4(_mm_loadu_ps(p))};

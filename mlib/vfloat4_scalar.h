@@ -34,6 +34,9 @@ struct vfloat4 {
     return r;
   }
   MLIB_INLINE void storeu(void* p) const { std::memcpy(p, v, sizeof v); }
+  MLIB_INLINE static vfloat4 from_bytes(const std::uint8_t* p) {  // lane i = p[i]
+    return {{float(p[0]), float(p[1]), float(p[2]), float(p[3])}};
+  }
   MLIB_INLINE static vfloat4 broadcast_quad(const float* p) { return loadu(p); }  // see vfloat16_avx512.h
   // Lane i = src[ids[i / 4]] (see vfloat16_avx512.h): one ray's value in every lane.
   MLIB_INLINE static vfloat4 spread_quads(const float* src, const std::uint32_t* ids) {

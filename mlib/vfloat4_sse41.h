@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 
 #include "mlib/simd.h"  // MLIB_INLINE
 
@@ -40,6 +41,12 @@ struct vfloat4 {
   MLIB_INLINE void store(float* p) const { _mm_store_ps(p, v); }
   MLIB_INLINE static vfloat4 loadu(const void* p) { return {_mm_loadu_ps(static_cast<const float*>(p))}; }  // any alignment
   MLIB_INLINE void storeu(void* p) const { _mm_storeu_ps(static_cast<float*>(p), v); }
+  // Lane i = p[i] as a float (4 bytes, any alignment).
+  MLIB_INLINE static vfloat4 from_bytes(const std::uint8_t* p) {
+    std::int32_t bytes;
+    std::memcpy(&bytes, p, sizeof bytes);
+    return {_mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(bytes)))};
+  }
   MLIB_INLINE static vfloat4 broadcast_quad(const float* p) { return loadu(p); }  // see vfloat16_avx512.h
   // Lane i = src[ids[i / 4]] (see vfloat16_avx512.h): one ray's value in every lane.
   MLIB_INLINE static vfloat4 spread_quads(const float* src, const std::uint32_t* ids) {

@@ -38,6 +38,10 @@ struct vfloat8 {
   MLIB_INLINE void store(float* p) const { _mm256_store_ps(p, v); }
   MLIB_INLINE static vfloat8 loadu(const void* p) { return {_mm256_loadu_ps(static_cast<const float*>(p))}; }
   MLIB_INLINE void storeu(void* p) const { _mm256_storeu_ps(static_cast<float*>(p), v); }
+  // Lane i = p[i] as a float (8 bytes, any alignment).
+  MLIB_INLINE static vfloat8 from_bytes(const std::uint8_t* p) {
+    return {_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))))};
+  }
   // lo[0 ... 3] in lanes 0 ... 3 and hi[0 ... 3] in lanes 4 ... 7 (each 16-byte aligned).
   MLIB_INLINE static vfloat8 load_halves(const float* lo, const float* hi) {
     return {_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lo)), _mm_load_ps(hi), 1)};

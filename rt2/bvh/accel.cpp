@@ -124,7 +124,7 @@ WideBvh<N> build_triangles(std::span<const Mesh> meshes, const BvhConfig& config
   }
   const std::size_t first_block = acc.blocks.size();
   WideBvh<N> tree = collapse_bvh<N>(bvh, std::span<const Triangle>(acc.tris).subspan(offset),
-                                    acc.blocks);
+                                    acc.blocks, config.nodes);
   if (offset != 0)  // the blocks name triangles of the span: shift them to acc.tris'
     for (std::size_t b = first_block; b < acc.blocks.size(); ++b)
       for (std::uint32_t& p : acc.blocks[b].prim)
@@ -175,12 +175,12 @@ Accel Accel::build(const Scene& scene, const BvhConfig& config, Isa isa) {
   with_bvh_width(isa, [&](auto width) {
     constexpr int N = decltype(width)::value;
     acc.wide<N>() = build_triangles<N>(scene.meshes, config, columns, acc, &acc.stats);
-    acc.wide_nodes = static_cast<std::uint32_t>(acc.wide<N>().nodes.size());
+    acc.wide_nodes = static_cast<std::uint32_t>(acc.wide<N>().node_count());
     std::vector<WideBvh<N>>& trees = mesh_trees_of<N>(acc.mesh_trees);
     for (const Mesh& m : scene.instanced_meshes) {
       trees.push_back(build_triangles<N>(std::span<const Mesh>(&m, 1), config, columns, acc,
                                          nullptr));
-      acc.wide_nodes += static_cast<std::uint32_t>(trees.back().nodes.size());
+      acc.wide_nodes += static_cast<std::uint32_t>(trees.back().node_count());
     }
   });
   build_spheres(scene, config, acc);
@@ -279,11 +279,11 @@ void Accel::place_instances(const std::vector<Instance>& scene_instances, int th
 
 std::size_t Accel::bvh_bytes() const {
   std::size_t mesh_nodes = 0;
-  for (const auto& t : mesh_trees.bvh4) mesh_nodes += t.nodes.size() * sizeof(WideNode<4>);
-  for (const auto& t : mesh_trees.bvh8) mesh_nodes += t.nodes.size() * sizeof(WideNode<8>);
-  for (const auto& t : mesh_trees.bvh16) mesh_nodes += t.nodes.size() * sizeof(WideNode<16>);
-  return bvh4.nodes.size() * sizeof(WideNode<4>) + bvh8.nodes.size() * sizeof(WideNode<8>) +
-         bvh16.nodes.size() * sizeof(WideNode<16>) + blocks.size() * sizeof(TriangleBlock) +
+  for (const auto& t : mesh_trees.bvh4) mesh_nodes += t.node_bytes();
+  for (const auto& t : mesh_trees.bvh8) mesh_nodes += t.node_bytes();
+  for (const auto& t : mesh_trees.bvh16) mesh_nodes += t.node_bytes();
+  return bvh4.node_bytes() + bvh8.node_bytes() + bvh16.node_bytes() +
+         blocks.size() * sizeof(TriangleBlock) +
          mesh_nodes + sphere_bvh.nodes.size() * sizeof(BvhNode) +
          sphere_bvh.order.size() * sizeof(std::uint32_t) +
          instance_bvh.nodes.size() * sizeof(BvhNode) +

@@ -150,6 +150,10 @@ struct Accel {
 
   // The triangle tree's surface area cost in Embree's terms (wide_sah, bvh/wide_bvh.h).
   WideSah tree_sah() const;
+  // Whether the triangle tree's nodes are quantized (NodeLayout).
+  bool quantized_nodes() const {
+    return with_bvh_width(isa, [&](auto width) { return wide<decltype(width)::value>().quantized; });
+  }
 
   // Branch-free over the kinds: a batch's hits mix them unpredictably (a plane's tag, or any
   // other, reads the planes'). A hit in an instance takes the instance's material if it has

@@ -28,6 +28,8 @@ static_assert(sizeof(BvhNode) == 32);
 enum class Split { midpoint, sah };
 
 // The builder's knobs.
+enum class NodeLayout { automatic, plain, quantized };
+
 struct BvhConfig {
   // A node with at most this many primitives becomes a leaf; any bigger node is split
   // (the thesis's rule; 1 ... 16384 and more all work).
@@ -41,6 +43,9 @@ struct BvhConfig {
   // tested a TriangleBlock (4 triangles) at a time, so a split into 4 + 4 costs less than
   // one into 3 + 5, and leaves come out fuller (Embree's rule). 1 is the plain SAH.
   std::uint32_t sah_block = 4;
+  // The wide tree's nodes (bvh/wide_bvh.h): plain float boxes, quantized ones, or chosen
+  // by the tree's size (kQuantizeBytes).
+  NodeLayout nodes = NodeLayout::automatic;
 };
 
 struct BvhStats {

@@ -1,6 +1,8 @@
 // rt2/bvh/wide_build.cpp — collapsing the binary tree into the wide one (see wide_bvh.h).
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -13,23 +15,92 @@ namespace rt2 {
 
 namespace {
 
+constexpr int kMinScaleExponent = -126, kMaxScaleExponent = 120;  // see WideNode
+
+// Axis a of the boxes in node's slots [0, n): origins, scale and the planes, each plane the
+// nearest the node can hold on the outer side of the box's.
+template <int N>
+void quantize_axis(QuantizedNode<N>& node, const Aabb* boxes, int n, int a) {
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (int i = 0; i < n; ++i) {
+    lo = std::min(lo, boxes[i].lo[a]);
+    hi = std::max(hi, boxes[i].hi[a]);
+  }
+  std::uint8_t* qlo = node.q[2 * a];
+  std::uint8_t* qhi = node.q[2 * a + 1];
+  // The least scale 2^e with lo + 255 * 2^e >= hi, rounded as the walks round it.
+  int e = kMinScaleExponent;
+  const bool finite = std::isfinite(lo) && std::isfinite(hi);
+  if (finite && hi > lo) {
+    std::frexp((double(hi) - double(lo)) / 255.0, &e);  // 2^e >= the span / 255
+    e = std::clamp(e - 1, kMinScaleExponent, kMaxScaleExponent + 1);
+  }
+  const auto fits = [&](int x) {
+    return lo + 255.0f * std::ldexp(1.0f, x) >= hi;  // the product is exact
+  };
+  while (finite && e <= kMaxScaleExponent && !fits(e)) ++e;
+  if (!finite || e > kMaxScaleExponent) {  // unbounded along this axis (see WideNode)
+    node.origin[2 * a] = -std::numeric_limits<float>::infinity();
+    node.origin[2 * a + 1] = std::numeric_limits<float>::infinity();
+    node.scale_bits[a] = 127;
+    for (int i = 0; i < N; ++i) qlo[i] = qhi[i] = 0;
+    return;
+  }
+  node.origin[2 * a] = node.origin[2 * a + 1] = lo;
+  node.scale_bits[a] = std::uint8_t(e + 127);
+  const float s = node.scale(a);
+  const double inv = 1.0 / double(s);
+  const auto plane = [&](int q) { return lo + float(q) * s; };
+  for (int i = 0; i < n; ++i) {
+    // From the nearest estimate, moved until the plane is outside the box and the next
+    // one inward is not: bounded steps, since plane(0) = lo and plane(255) >= hi.
+    int l = int(std::clamp(std::floor((double(boxes[i].lo[a]) - lo) * inv), 0.0, 255.0));
+    while (l > 0 && plane(l) > boxes[i].lo[a]) --l;
+    while (l < 255 && plane(l + 1) <= boxes[i].lo[a]) ++l;
+    int h = int(std::clamp(std::ceil((double(boxes[i].hi[a]) - lo) * inv), 0.0, 255.0));
+    while (h < 255 && plane(h) < boxes[i].hi[a]) ++h;
+    while (h > 0 && plane(h - 1) >= boxes[i].hi[a]) --h;
+    qlo[i] = std::uint8_t(l);
+    qhi[i] = std::uint8_t(h);
+  }
+  for (int i = n; i < N; ++i) {  // unused: an inverted box, though the walks never test it
+    qlo[i] = 255;
+    qhi[i] = 0;
+  }
+}
+
+// A plain node's boxes: boxes[0 .. n) in slots [0, n), the empty box in the others.
+template <int N>
+void set_boxes(WideNode<N>& node, const Aabb* boxes, int n) {
+  for (int i = 0; i < N; ++i)
+    for (int a = 0; a < 3; ++a) {
+      node.bounds[2 * a][i] = i < n ? boxes[i].lo[a] : std::numeric_limits<float>::infinity();
+      node.bounds[2 * a + 1][i] = i < n ? boxes[i].hi[a] : -std::numeric_limits<float>::infinity();
+    }
+}
+
+template <int N>
+void set_boxes(QuantizedNode<N>& node, const Aabb* boxes, int n) {
+  quantize_boxes(node, boxes, n);
+}
+
 // Refitting: the boxes of a tree whose triangles moved, its shape kept. Each box is what the
 // build gives the same triangles in the same node: the union of their vertices, padded by
 // box_pad. The children's orders per octant are kept: they steer which child a walk enters
 // first, never what it finds, and remaking them would cost a fifth of the refit.
-template <int N>
+template <int N, class Node>
 class Refitter {
  public:
-  Refitter(WideBvh<N>& bvh, std::span<const Triangle> tris, TriangleBlocks& blocks)
-      : nodes_(bvh.nodes.data()), tris_(tris), blocks_(blocks.data()) {}
+  Refitter(Node* nodes, std::span<const Triangle> tris, TriangleBlocks& blocks)
+      : nodes_(nodes), tris_(tris), blocks_(blocks.data()) {}
 
   // The unpadded box of the triangles under `ref` (a node or a leaf), its nodes refit and
   // its blocks rewritten. Below depth `split_depth` the children are refit as OpenMP tasks.
   Aabb refit(std::uint32_t ref, int split_depth) {
     if (ref & kLeaf) return leaf(ref & ~kLeaf);
-    WideNode<N>& w = nodes_[ref];
+    Node& w = nodes_[ref];
     Aabb child[N];
-    const int n = used_slots(w);
+    const int n = w.slots();
     for (int i = 0; i < n; ++i) {
       const std::uint32_t c = w.child[i];
       if (split_depth > 0) {
@@ -42,26 +113,20 @@ class Refitter {
     if (split_depth > 0) {
 #pragma omp taskwait
     }
-    Aabb box;
+    Aabb box, padded[N];
     for (int i = 0; i < n; ++i) {
       box.grow(child[i]);
       for (int a = 0; a < 3; ++a) {
         const float pad = box_pad(child[i].lo[a], child[i].hi[a]);
-        w.bounds[2 * a][i] = child[i].lo[a] - pad;
-        w.bounds[2 * a + 1][i] = child[i].hi[a] + pad;
+        padded[i].lo[a] = child[i].lo[a] - pad;
+        padded[i].hi[a] = child[i].hi[a] + pad;
       }
     }
+    set_boxes(w, padded, n);
     return box;
   }
 
  private:
-  // The used slots are [0, n): the build fills them first; an unused one has an empty box.
-  static int used_slots(const WideNode<N>& w) {
-    int n = 0;
-    while (n < N && w.bounds[0][n] <= w.bounds[1][n]) ++n;
-    return n;
-  }
-
   Aabb leaf(std::uint32_t first) {
     Aabb box;
     for (TriangleBlock* b = blocks_ + first;; ++b) {
@@ -78,7 +143,7 @@ class Refitter {
     }
   }
 
-  WideNode<N>* nodes_;
+  Node* nodes_;
   std::span<const Triangle> tris_;
   TriangleBlock* blocks_;
 };
@@ -110,19 +175,11 @@ class Collapser {
     std::uint32_t kids[N];
     const int n = slots(b, kids);
     WideNode<N> w;
-    for (int i = 0; i < N; ++i) {
-      for (int a = 0; a < 3; ++a) {
-        w.bounds[2 * a][i] = std::numeric_limits<float>::infinity();
-        w.bounds[2 * a + 1][i] = -std::numeric_limits<float>::infinity();
-      }
-      w.child[i] = 0;
-    }
+    Aabb boxes[N];
+    for (int i = 0; i < N; ++i) w.child[i] = 0;
     for (int i = 0; i < n; ++i) {
       const BvhNode& k = bvh_.nodes[kids[i]];
-      for (int a = 0; a < 3; ++a) {
-        w.bounds[2 * a][i] = k.lo[a];
-        w.bounds[2 * a + 1][i] = k.hi[a];
-      }
+      boxes[i] = {mlib::load_xyz(k.lo), mlib::load_xyz(k.hi)};
       if (k.is_leaf()) {
         w.child[i] = leaf(k);
       } else {
@@ -130,18 +187,19 @@ class Collapser {
         out_.nodes.emplace_back();
       }
     }
-    set_octant_orders(w, n);
+    set_boxes(w, boxes, n);
+    set_octant_orders(w, boxes, n);
     out_.nodes[index] = w;
     for (int i = 0; i < n; ++i)
       if (!(w.child[i] & kLeaf)) fill(w.child[i], kids[i], depth + 1);
   }
 
-  // WideNode::octant_order for the n children in slots [0, n). Each child's position is
-  // its rank, counted without a branch (a sort of eight random keys mispredicts about every
-  // other comparison). Octant 7 - o is octant o's order reversed (its diagonal is the
-  // opposite one). A node of two children keeps the identity order: the walk orders two
-  // children by their distances (rt2/kernel/wide_traverse.h).
-  static void set_octant_orders(WideNode<N>& w, int n) {
+  // WideNode::octant_order for the n children in slots [0, n), whose boxes are `boxes`.
+  // Each child's position is its rank, counted without a branch (a sort of eight random
+  // keys mispredicts about every other comparison). Octant 7 - o is octant o's order
+  // reversed (its diagonal is the opposite one). A node of two children keeps the identity
+  // order: the walk orders two children by their distances (rt2/kernel/wide_traverse.h).
+  static void set_octant_orders(WideNode<N>& w, const Aabb* boxes, int n) {
     for (int j = 0; j < N; ++j)  // j in each field
       w.octant_order[j] = std::uint32_t(j) * (kOrderBits<N> == 3 ? 0x249249u : 0x11111111u);
     if (n <= 2) return;
@@ -149,7 +207,7 @@ class Collapser {
     float centre[3][N];  // halves added: lo + hi could overflow to inf (and a key to NaN)
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < n; ++i)
-        centre[a][i] = w.bounds[2 * a][i] * 0.5f + w.bounds[2 * a + 1][i] * 0.5f;
+        centre[a][i] = boxes[i].lo[a] * 0.5f + boxes[i].hi[a] * 0.5f;
     for (int o = 0; o < 4; ++o) {
       float key[N];  // along the diagonal: farther is larger
       for (int i = 0; i < n; ++i)
@@ -314,11 +372,40 @@ class Collapser {
   WideBvh<N>& out_;
 };
 
+// The tree's nodes quantized (QuantizedNode), the plain ones freed.
+template <int N>
+void quantize_nodes(WideBvh<N>& bvh) {
+  bvh.quantized_nodes.resize(bvh.nodes.size());
+  for (std::size_t k = 0; k < bvh.nodes.size(); ++k) {
+    const WideNode<N>& w = bvh.nodes[k];
+    QuantizedNode<N> q;
+    std::memset(&q, 0, sizeof q);  // copied whole: a 4-wide node's padding is 0
+    Aabb boxes[N];
+    const int n = w.slots();
+    for (int i = 0; i < n; ++i) boxes[i] = w.box(i);
+    quantize_boxes(q, boxes, n);
+    for (int i = 0; i < N; ++i) {
+      q.child[i] = w.child[i];
+      q.octant_order[i] = w.octant_order[i];
+    }
+    std::memcpy(&bvh.quantized_nodes[k], &q, sizeof q);
+  }
+  bvh.nodes = {};
+  bvh.quantized = true;
+}
+
 }  // namespace
 
 template <int N>
+void quantize_boxes(QuantizedNode<N>& node, const Aabb* boxes, int n) {
+  node.count = std::uint8_t(n);
+  node.used = (std::uint32_t(1) << n) - 1;  // n <= 16
+  for (int a = 0; a < 3; ++a) quantize_axis(node, boxes, n, a);
+}
+
+template <int N>
 WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
-                        TriangleBlocks& blocks) {
+                        TriangleBlocks& blocks, NodeLayout layout) {
   WideBvh<N> out;
   if (bvh.nodes.empty()) return out;
   std::size_t leaf_blocks = 0;  // reserved at once: each growth would copy them all
@@ -329,9 +416,12 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
   Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();
   out.bounds = {mlib::load_xyz(bvh.nodes[0].lo), mlib::load_xyz(bvh.nodes[0].hi)};
-  out.prefetch_pushed =
-      out.nodes.size() * sizeof(WideNode<N>) + leaf_blocks * sizeof(TriangleBlock) >=
-      kPrefetchPushedBytes;
+  const std::size_t bytes =
+      out.nodes.size() * sizeof(WideNode<N>) + leaf_blocks * sizeof(TriangleBlock);
+  out.prefetch_pushed = bytes >= kPrefetchPushedBytes;
+  if (layout == NodeLayout::quantized ||
+      (layout == NodeLayout::automatic && bytes >= kQuantizeBytes))
+    quantize_nodes(out);
   return out;
 }
 
@@ -339,15 +429,16 @@ template <int N>
 void refit_bvh(WideBvh<N>& bvh, std::span<const Triangle> triangles, TriangleBlocks& blocks,
                int threads) {
   if (bvh.root == kNoChild) return;
-  Refitter<N> r(bvh, triangles, blocks);
-  Aabb box;
-  if (threads == 1 || (bvh.root & kLeaf)) {
-    box = r.refit(bvh.root, 0);
-  } else {
+  const Aabb box = bvh.with_nodes([&](const auto* nodes) {
+    using Node = std::remove_const_t<std::remove_pointer_t<decltype(nodes)>>;
+    Refitter<N, Node> r(const_cast<Node*>(nodes), triangles, blocks);
+    if (threads == 1 || (bvh.root & kLeaf)) return r.refit(bvh.root, 0);
+    Aabb all;
 #pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
 #pragma omp single
-    box = r.refit(bvh.root, 2);  // N^2 tasks: enough to balance a few threads
-  }
+    all = r.refit(bvh.root, 2);  // N^2 tasks: enough to balance a few threads
+    return all;
+  });
   for (int a = 0; a < 3; ++a) {
     const float pad = box_pad(box.lo[a], box.hi[a]);
     bvh.bounds.lo[a] = box.lo[a] - pad;
@@ -355,12 +446,16 @@ void refit_bvh(WideBvh<N>& bvh, std::span<const Triangle> triangles, TriangleBlo
   }
 }
 
-template WideBvh<4> collapse_bvh<4>(const Bvh&, std::span<const Triangle>,
-                                    TriangleBlocks&);
-template WideBvh<8> collapse_bvh<8>(const Bvh&, std::span<const Triangle>,
-                                    TriangleBlocks&);
-template WideBvh<16> collapse_bvh<16>(const Bvh&, std::span<const Triangle>,
-                                      TriangleBlocks&);
+template void quantize_boxes<4>(QuantizedNode<4>&, const Aabb*, int);
+template void quantize_boxes<8>(QuantizedNode<8>&, const Aabb*, int);
+template void quantize_boxes<16>(QuantizedNode<16>&, const Aabb*, int);
+
+template WideBvh<4> collapse_bvh<4>(const Bvh&, std::span<const Triangle>, TriangleBlocks&,
+                                    NodeLayout);
+template WideBvh<8> collapse_bvh<8>(const Bvh&, std::span<const Triangle>, TriangleBlocks&,
+                                    NodeLayout);
+template WideBvh<16> collapse_bvh<16>(const Bvh&, std::span<const Triangle>, TriangleBlocks&,
+                                      NodeLayout);
 
 template void refit_bvh<4>(WideBvh<4>&, std::span<const Triangle>, TriangleBlocks&, int);
 template void refit_bvh<8>(WideBvh<8>&, std::span<const Triangle>, TriangleBlocks&, int);

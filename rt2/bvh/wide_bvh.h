@@ -7,9 +7,11 @@
 // node's subtree into at most N slots, chosen by dynamic programming so that the sum of the
 // wide nodes' areas is least (Ylitie et al. 2017; wide_build.cpp). The binary tree's leaves
 // and padded boxes (build.cpp) are kept, so the thesis's max-leaf-size rule still holds.
-// Plain data; the builder makes it, the traversal (rt2/kernel/wide_traverse.h) reads it.
+// Large trees store their nodes' boxes quantized to 8 bits (QuantizedNode), small ones as
+// floats (WideNode). Plain data; the builder makes it, the traversal (rt2/kernel/wide_traverse.h) reads it.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -45,9 +47,60 @@ struct alignas(64) WideNode {
   // "Accelerated Single Ray Tracing for Wide Vector Units"); the 4-wide walk sorts, and leaves
   // it unread.
   std::uint32_t octant_order[N];
+
+  // The used slots, [0, slots()): the build fills them first.
+  int slots() const {
+    int n = 0;
+    while (n < N && bounds[0][n] <= bounds[1][n]) ++n;
+    return n;
+  }
+  float plane(int row, int i) const { return bounds[row][i]; }
+  Aabb box(int i) const {
+    return {vec4(bounds[0][i], bounds[2][i], bounds[4][i]), vec4(bounds[1][i], bounds[3][i], bounds[5][i])};
+  }
 };
 static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256 &&
               sizeof(WideNode<16>) == 512);
+
+// QuantizedNode: WideNode with its child boxes quantized (Ylitie et al. 2017; Embree's compressed nodes): plane
+// (row r, slot i) = origin[r] + q[r][i] * scale(r / 2), scale(a) = 2^(scale_bits[a] - 127) in
+// [2^-126, 2^120]. The product of an 8-bit integer and such a power of two is exact, so the
+// sum is rounded once whether it is fused or not: the builder and every kernel decode the
+// same float. The builder rounds each plane outward (a decoded box holds the child's padded
+// box, bvh/build.cpp), so no ray misses a box it would have entered before quantization. An
+// axis whose boxes span more than 255 * 2^120 gets origins -inf (low rows) and +inf (high
+// rows), every child unbounded along it. Unused slots are those outside `used`: the walks
+// drop them from every test's result, whatever their rows decode to. Half a WideNode's
+// bytes or less, for a few more operations per node test (wide_traverse.h: NodeRay).
+// N = 4: 32 bytes of header + 24 of planes + 16 of children + 16 of orders = 88, padded to 96.
+// N = 8: 32 + 48 + 32 + 32 = 144. N = 16: 32 + 96 + 64 + 64 = 256 (four cache lines).
+template <int N>
+struct alignas(N >= 16 ? 64 : 16) QuantizedNode {
+  float origin[6];                // per row
+  std::uint8_t scale_bits[3];     // per axis: the scale's float exponent bits
+  std::uint8_t count;             // the used slots are [0, count)
+  std::uint32_t used;             // (1 << count) - 1
+  std::uint8_t q[6][N];            // rows as WideNode::bounds
+  std::uint32_t child[N];          // as WideNode's
+  std::uint32_t octant_order[N];   // as WideNode's, from the boxes before quantization
+
+  int slots() const { return count; }
+
+  float scale(int axis) const { return std::bit_cast<float>(std::uint32_t(scale_bits[axis]) << 23); }
+  // The plane of row `row`, slot i, as the walks decode it.
+  float plane(int row, int i) const { return origin[row] + float(q[row][i]) * scale(row >> 1); }
+  // Slot i's box as decoded.
+  Aabb box(int i) const {
+    return {vec4(plane(0, i), plane(2, i), plane(4, i)), vec4(plane(1, i), plane(3, i), plane(5, i))};
+  }
+};
+static_assert(sizeof(QuantizedNode<4>) == 96 && sizeof(QuantizedNode<8>) == 144 &&
+              sizeof(QuantizedNode<16>) == 256);
+
+// Sets node's boxes to boxes[0 .. n) (n <= N), each rounded outward to the quantized planes
+// the node can hold, and its used slots to [0, n).
+template <int N>
+void quantize_boxes(QuantizedNode<N>& node, const Aabb* boxes, int n);
 
 // Bits per octant in WideNode::octant_order: enough for a slot index (8 octants x 4 bits
 // fill the 32 of a 16-wide node's orders).
@@ -58,7 +111,10 @@ template <int N>
 struct WideBvh {
   // Depth first; nodes[0] is the root when root is not a leaf. On huge pages once large
   // (mlib/huge_pages.h): a ray reads a few nodes anywhere in the array.
+  // Nodes of one layout: `quantized_nodes` when `quantized`, else `nodes` (NodeLayout).
   mlib::HugePageVector<WideNode<N>> nodes;
+  mlib::HugePageVector<QuantizedNode<N>> quantized_nodes;
+  bool quantized = false;
   std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
   // The binary tree's root box (padded, build.cpp), which holds every child box: a ray that
   // misses it (slab_entry, as the binary tree's walk tests it) hits no triangle, and the
@@ -72,7 +128,23 @@ struct WideBvh {
   // asking for all of them at once overlaps the waits; in a tree the L2 holds, the extra
   // prefetches only cost.
   bool prefetch_pushed = false;
+
+  // f(nodes) with a pointer to the tree's nodes, of either layout.
+  template <class F>
+  decltype(auto) with_nodes(F&& f) const {
+    return quantized ? f(quantized_nodes.data()) : f(nodes.data());
+  }
+  std::size_t node_count() const { return quantized ? quantized_nodes.size() : nodes.size(); }
+  std::size_t node_bytes() const {
+    return quantized ? quantized_nodes.size() * sizeof(QuantizedNode<N>)
+                     : nodes.size() * sizeof(WideNode<N>);
+  }
 };
+
+// The tree size (nodes and blocks, as WideNode) from which collapse_bvh quantizes the nodes
+// under NodeLayout::automatic: below it the tree mostly stays in the caches, and the plain
+// node's shorter test wins; above, the quantized node's fewer bytes do.
+inline constexpr std::size_t kQuantizeBytes = std::size_t(16) << 20;
 
 // The tree size from which collapse_bvh sets WideBvh::prefetch_pushed.
 inline constexpr std::size_t kPrefetchPushedBytes = std::size_t(16) << 20;
@@ -113,7 +185,7 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks);
 // leaves' blocks to `blocks` (prim = index into `triangles`).
 template <int N>
 WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
-                        TriangleBlocks& blocks);
+                        TriangleBlocks& blocks, NodeLayout layout = NodeLayout::automatic);
 
 // Refits `bvh`, whose blocks are in `blocks`, to `triangles` moved (the same triangles, by
 // the index the blocks hold, at new positions): the blocks take their triangles' vertices and

@@ -1,6 +1,4 @@
 // rt2/bvh/wide_sah.cpp — the wide tree's surface area cost in Embree's terms (wide_bvh.h).
-#include <algorithm>
-
 #include "rt2/bvh/wide_bvh.h"
 
 namespace rt2 {
@@ -13,11 +11,11 @@ double half_area(const float (&lo)[3], const float (&hi)[3]) {
   return x * y + y * z + z * x;
 }
 
-// Half the surface area of slot i's box.
-template <int N>
-double half_area(const WideNode<N>& node, int i) {
-  return half_area({node.bounds[0][i], node.bounds[2][i], node.bounds[4][i]},
-                   {node.bounds[1][i], node.bounds[3][i], node.bounds[5][i]});
+// Half the surface area of slot i's box (as the walks decode it).
+template <class Node>
+double half_area(const Node& node, int i) {
+  const Aabb b = node.box(i);
+  return half_area({b.lo[0], b.lo[1], b.lo[2]}, {b.hi[0], b.hi[1], b.hi[2]});
 }
 
 std::uint32_t leaf_blocks(const TriangleBlock* first) {
@@ -36,26 +34,24 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks) {
     sah.leaves = leaf_blocks(blocks + (bvh.root & ~kLeaf));
     return sah;
   }
-  // The root's box: the union of its children's (an unused slot's empty box adds nothing).
-  const WideNode<N>& root = bvh.nodes[0];
-  float lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = *std::min_element(root.bounds[2 * a], root.bounds[2 * a] + N);
-    hi[a] = *std::max_element(root.bounds[2 * a + 1], root.bounds[2 * a + 1] + N);
-  }
-  const double root_area = half_area(lo, hi);
-  if (!(root_area > 0.0)) return sah;  // a flat or degenerate scene: no ratio to state
-  sah.nodes = 1.0;
-  for (const WideNode<N>& node : bvh.nodes)
-    for (int i = 0; i < N; ++i) {
-      const std::uint32_t c = node.child[i];
-      if (!(node.bounds[0][i] <= node.bounds[1][i])) continue;  // unused slot
-      const double ratio = half_area(node, i) / root_area;
-      if (c & kLeaf)
-        sah.leaves += ratio * leaf_blocks(blocks + (c & ~kLeaf));
-      else
-        sah.nodes += ratio;
-    }
+  bvh.with_nodes([&](const auto* nodes) {
+    // The root's box: the union of its children's.
+    Aabb root;
+    for (int i = 0; i < nodes[0].slots(); ++i) root.grow(nodes[0].box(i));
+    const double root_area =
+        half_area({root.lo[0], root.lo[1], root.lo[2]}, {root.hi[0], root.hi[1], root.hi[2]});
+    if (!(root_area > 0.0)) return;  // a flat or degenerate scene: no ratio to state
+    sah.nodes = 1.0;
+    for (std::size_t k = 0; k < bvh.node_count(); ++k)
+      for (int i = 0; i < nodes[k].slots(); ++i) {
+        const std::uint32_t c = nodes[k].child[i];
+        const double ratio = half_area(nodes[k], i) / root_area;
+        if (c & kLeaf)
+          sah.leaves += ratio * leaf_blocks(blocks + (c & ~kLeaf));
+        else
+          sah.nodes += ratio;
+      }
+  });
   return sah;
 }
 

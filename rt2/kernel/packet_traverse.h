@@ -202,10 +202,31 @@ struct PacketRays {
   // within [t_min, t_max_padded / kSlabPad], `entry` a lower bound of their entry
   // distances. As NodeRay::test (the integer form), with the frustum's bounds.
   MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max_padded, V& entry) const {
+    V bn[3], bf[3];
+    for (int a = 0; a < 3; ++a) {
+      bn[a] = V::load(node.bounds[near[a]]);
+      bf[a] = V::load(node.bounds[far[a]]);
+    }
+    return test(bn, bf, t_min, t_max_padded, entry);
+  }
+  // The same for a quantized node's used slots, its boxes decoded.
+  MLIB_INLINE unsigned test(const QuantizedNode<N>& node, V t_min, V t_max_padded,
+                            V& entry) const {
+    V bn[3], bf[3];
+    for (int a = 0; a < 3; ++a) {
+      const V scale = V::broadcast(node.scale(a));
+      bn[a] = node_planes(node, near[a], scale);
+      bf[a] = node_planes(node, far[a], scale);
+    }
+    return test(bn, bf, t_min, t_max_padded, entry) & node.used;
+  }
+  // The frustum against near planes bn and far planes bf, per axis.
+  MLIB_INLINE unsigned test(const V (&bn)[3], const V (&bf)[3], V t_min, V t_max_padded,
+                            V& entry) const {
     V n[3], f[3];
     for (int a = 0; a < 3; ++a) {
-      n[a] = (V::load(node.bounds[near[a]]) - o_near[a]) * i_near[a];
-      f[a] = (V::load(node.bounds[far[a]]) - o_far[a]) * i_far[a];
+      n[a] = (bn[a] - o_near[a]) * i_near[a];
+      f[a] = (bf[a] - o_far[a]) * i_far[a];
     }
     entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
     return mlib::bits(ile(entry, imin(imin(f[0], f[1]), imin(f[2], t_max_padded))));
@@ -214,12 +235,13 @@ struct PacketRays {
   // The lanes of `lanes` whose rays enter child `slot` of `node` within [t_min,
   // t_max_padded[l] / kSlabPad]: each ray's own test (NodeRay<N, true>::test), kRayLanes
   // rays at a time.
-  MLIB_INLINE PacketMask enter(const WideNode<N>& node, int slot, PacketMask lanes, R t_min,
+  template <class Node>
+  MLIB_INLINE PacketMask enter(const Node& node, int slot, PacketMask lanes, R t_min,
                                const float* t_max_padded) const {
     R lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      lo[a] = R::broadcast(node.bounds[near[a]][slot]);
-      hi[a] = R::broadcast(node.bounds[far[a]][slot]);
+      lo[a] = R::broadcast(node.plane(near[a], slot));
+      hi[a] = R::broadcast(node.plane(far[a], slot));
     }
     PacketMask mask = 0;
     for (int c = 0; c < kPacketSize; c += kRayLanes) {
@@ -258,11 +280,12 @@ MLIB_INLINE void count_packet(TraversalCounts& c, PacketMask lanes) {
 // read), whole vectors where the rays' bounds were just computed. `test` tests a leaf
 // block against the packet's rays (triangle_packet_intersect.h); `pr` was made from the
 // same rays and lanes.
-template <int N, class PacketTest>
-inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
-                                    const PacketRays<N>& pr, const PacketTest& test,
-                                    PacketMask lanes, float t_min, const float* t_bound,
-                                    Hit* hits, TraversalCounts* counts) {
+template <int N, class PacketTest, class Node>
+inline void closest_triangle_packet_walk(const WideBvh<N>& bvh, const Node* nodes,
+                                         const TriangleBlock* blocks, const PacketRays<N>& pr,
+                                         const PacketTest& test, PacketMask lanes, float t_min,
+                                         const float* t_bound, Hit* hits,
+                                         TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   const V t_min_v = V::broadcast(t_min);
   const typename PacketRays<N>::R t_min_r = PacketRays<N>::R::broadcast(t_min);
@@ -287,7 +310,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
   for (;;) {
     while (!(ref & kLeaf)) {
       ++local.nodes;
-      const WideNode<N>& node = bvh.nodes[ref];
+      const Node& node = nodes[ref];
       V entry;
       unsigned mask = pr.test(node, t_min_v, V::broadcast(t_far), entry);
       entry.store(entry_t);
@@ -303,7 +326,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
       if (k == 0) goto pop;
       for (int a = 1; a < k; ++a)
         for (int j = a; j > 0 && hit[j - 1].t < hit[j].t; --j) std::swap(hit[j - 1], hit[j]);
-      for (int j = 0; j < k; ++j) prefetch_ref(bvh.nodes.data(), blocks, hit[j].ref);
+      for (int j = 0; j < k; ++j) prefetch_ref(nodes, blocks, hit[j].ref);
       for (int j = 0; j < k - 1; ++j) stack[sp++] = hit[j];
       ref = hit[k - 1].ref;
       rays = hit[k - 1].rays;
@@ -334,11 +357,12 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
 // Calls on_hit(l, prim, t) for triangles hit by ray l of `lanes` in (t_min, t_max[l]), in
 // no particular order, until it returns true for that ray (then the ray is done). Returns
 // the lanes for which it did. t_max holds kPacketSize floats (those outside `lanes` unused).
-template <int N, class PacketTest, class OnHit>
-inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
-                                      const PacketRays<N>& pr, const PacketTest& test,
-                                      PacketMask lanes, float t_min, const float* t_max,
-                                      OnHit&& on_hit, TraversalCounts* counts) {
+template <int N, class PacketTest, class Node, class OnHit>
+inline PacketMask any_triangle_packet_walk(const WideBvh<N>& bvh, const Node* nodes,
+                                           const TriangleBlock* blocks, const PacketRays<N>& pr,
+                                           const PacketTest& test, PacketMask lanes, float t_min,
+                                           const float* t_max, OnHit&& on_hit,
+                                           TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
   const V t_min_v = V::broadcast(t_min);
   const typename PacketRays<N>::R t_min_r = PacketRays<N>::R::broadcast(t_min);
@@ -373,7 +397,7 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
   for (;;) {
     while (!(ref & kLeaf)) {
       ++local.nodes;
-      const WideNode<N>& node = bvh.nodes[ref];
+      const Node& node = nodes[ref];
       V entry;
       unsigned mask = pr.test(node, t_min_v, t_far_v, entry);
       PacketMask next = 0;
@@ -384,7 +408,7 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
         if (next) stack[sp++] = {ref, 0.0f, next};  // the previous child (ref reused below)
         ref = node.child[i];  // tentatively the child walked next
         next = in;
-        prefetch_ref(bvh.nodes.data(), blocks, ref);
+        prefetch_ref(nodes, blocks, ref);
       }
       if (!next) goto pop;
       rays = next;
@@ -409,6 +433,30 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
 out:
   if (counts) *counts += local;
   return done;
+}
+
+// closest_triangle_packet_walk over the tree's nodes, of either layout.
+template <int N, class PacketTest>
+inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                    const PacketRays<N>& pr, const PacketTest& test,
+                                    PacketMask lanes, float t_min, const float* t_bound,
+                                    Hit* hits, TraversalCounts* counts) {
+  bvh.with_nodes([&](const auto* nodes) {
+    closest_triangle_packet_walk(bvh, nodes, blocks, pr, test, lanes, t_min, t_bound, hits,
+                                 counts);
+  });
+}
+
+// any_triangle_packet_walk over the tree's nodes, of either layout.
+template <int N, class PacketTest, class OnHit>
+inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+                                      const PacketRays<N>& pr, const PacketTest& test,
+                                      PacketMask lanes, float t_min, const float* t_max,
+                                      OnHit&& on_hit, TraversalCounts* counts) {
+  return bvh.with_nodes([&](const auto* nodes) {
+    return any_triangle_packet_walk(bvh, nodes, blocks, pr, test, lanes, t_min, t_max, on_hit,
+                                    counts);
+  });
 }
 
 }  // namespace rt2::RT2_ISA

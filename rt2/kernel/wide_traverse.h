@@ -32,6 +32,18 @@ template <int N>
 inline constexpr bool kFusedNodeTest =
     requires(mlib::vfloat<N> a) { fmadd(a, a, a); };  // found through a (mlib)
 
+// Row `row` of a quantized node's planes in N lanes, with its axis's scale (row >> 1) in
+// `scale`: each lane the float QuantizedNode::plane gives (an exact product, rounded once in
+// the sum, fused or not).
+template <int N>
+MLIB_INLINE mlib::vfloat<N> node_planes(const QuantizedNode<N>& node, int row, mlib::vfloat<N> scale) {
+  using V = mlib::vfloat<N>;
+  if constexpr (kFusedNodeTest<N>)
+    return fmadd(V::from_bytes(node.q[row]), scale, V::broadcast(node.origin[row]));
+  else
+    return V::from_bytes(node.q[row]) * scale + V::broadcast(node.origin[row]);
+}
+
 // The ray as the node test needs it, for N lanes. `Finite`: every component of 1/dir is
 // finite (and org * 1/dir far from overflow, tree_form below), so no slab distance can be NaN
 // and the test takes its short form: minima and maxima as a tree of integer operations on
@@ -112,14 +124,36 @@ struct NodeRay {
   // Bit i set when child i's box is entered within [t_min, t_max_padded / pad]; its entry
   // in `entry`. The caller pads t_max: t_max_padded = t_max * kSlabPad (>= 0, as t_min).
   MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max_padded, V& entry) const {
+    V bn[3], bf[3];
+    for (int a = 0; a < 3; ++a) {
+      bn[a] = V::load(node.bounds[near[a]]);
+      bf[a] = V::load(node.bounds[far[a]]);
+    }
+    return test(bn, bf, t_min, t_max_padded, entry);
+  }
+  // The same for a quantized node's used slots: its boxes decoded, then the same test.
+  MLIB_INLINE unsigned test(const QuantizedNode<N>& node, V t_min, V t_max_padded,
+                            V& entry) const {
+    V bn[3], bf[3];
+    for (int a = 0; a < 3; ++a) {
+      const V scale = V::broadcast(node.scale(a));
+      bn[a] = node_planes(node, near[a], scale);
+      bf[a] = node_planes(node, far[a], scale);
+    }
+    return test(bn, bf, t_min, t_max_padded, entry) & node.used;
+  }
+
+  // The test against the boxes' near planes bn and far planes bf, per axis.
+  MLIB_INLINE unsigned test(const V (&bn)[3], const V (&bf)[3], V t_min, V t_max_padded,
+                            V& entry) const {
     V n[3], f[3];
     for (int a = 0; a < 3; ++a) {
       if constexpr (kFused) {
-        n[a] = fmadd(V::load(node.bounds[near[a]]), lanes(inv_near[a]), lanes(c_near[a]));
-        f[a] = fmadd(V::load(node.bounds[far[a]]), lanes(inv_far[a]), lanes(c_far[a]));
+        n[a] = fmadd(bn[a], lanes(inv_near[a]), lanes(c_near[a]));
+        f[a] = fmadd(bf[a], lanes(inv_far[a]), lanes(c_far[a]));
       } else {
-        n[a] = (V::load(node.bounds[near[a]]) - lanes(org[a])) * lanes(inv_near[a]);
-        f[a] = (V::load(node.bounds[far[a]]) - lanes(org[a])) * lanes(inv_far[a]);
+        n[a] = (bn[a] - lanes(org[a])) * lanes(inv_near[a]);
+        f[a] = (bf[a] - lanes(org[a])) * lanes(inv_far[a]);
       }
     }
     if constexpr (Finite) {
@@ -176,20 +210,20 @@ using PairLanes = mlib::vfloat<(N < 8 ? N : 8)>;
 
 // Lines of a node, and of a leaf block, fetched together when the walk decides to go there:
 // the first one would stall anyway, the others then arrive during that wait.
-template <int N>
-inline constexpr int kNodeLines = int(sizeof(WideNode<N>) / 64);
+// A node aligned to less than a line starts anywhere its alignment allows.
+template <class Node>
+inline constexpr int kNodeLines = int((sizeof(Node) + (64 - alignof(Node)) + 63) / 64);
 // A block starts anywhere its alignment allows, so it may reach into one line more.
 inline constexpr int kBlockLines =
     int((sizeof(TriangleBlock) + (64 - alignof(TriangleBlock)) + 63) / 64);
 static_assert(kBlockLines == 4);
 
-template <int N>
-MLIB_INLINE void prefetch_ref(const WideNode<N>* nodes, const TriangleBlock* blocks,
-                              std::uint32_t ref) {
+template <class Node>
+MLIB_INLINE void prefetch_ref(const Node* nodes, const TriangleBlock* blocks, std::uint32_t ref) {
   if (ref & kLeaf)
     mlib::prefetch(blocks + (ref & ~kLeaf), kBlockLines);
   else
-    mlib::prefetch(nodes + ref, kNodeLines<N>);
+    mlib::prefetch(nodes + ref, kNodeLines<Node>);
 }
 
 // The nodes and blocks a walk visits, counted only when the caller asks for them (Count;
@@ -228,8 +262,9 @@ struct TriangleHit {
 // copy in memory). The earlier hit comes in as two scalars, not as a Hit by value: GCC 12
 // assembles that argument on the stack from 4-byte stores and reads it back as two 8-byte
 // halves, a load that no store can forward.
-template <int N, class Test, bool Finite, bool Count>
-inline TriangleHit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks,
+template <int N, class Test, bool Finite, bool Count, class Node>
+inline TriangleHit closest_triangle_walk(const WideBvh<N>& bvh, const Node* const nodes,
+                                         const TriangleBlock* blocks,
                                          const Ray& ray, const RayPre& pre, const Test& test,
                                          float t_min, float t_max, PrimRef prior,
                                          TraversalCounts* counts) {
@@ -247,7 +282,6 @@ inline TriangleHit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBl
   alignas(64) float stack_t[kStackSize<N> + N - 1];
   std::size_t sp = 0;
   std::uint32_t ref = bvh.root;
-  const WideNode<N>* const nodes = bvh.nodes.data();
   const bool prefetch_pushed = bvh.prefetch_pushed;
   alignas(64) float entry_t[N];
   // Takes the hit n, lane `lane` of block b, when it is nearer than h (or as near, with a
@@ -265,7 +299,7 @@ inline TriangleHit closest_triangle_walk(const WideBvh<N>& bvh, const TriangleBl
     // Down through inner nodes, nearest child first.
     while (!(ref & kLeaf)) {
       local.node();
-      const WideNode<N>& node = nodes[ref];
+      const Node& node = nodes[ref];
       V entry;
       const unsigned mask = nr.test(node, t_min_v, V::broadcast(h.t * kSlabPad), entry);
       if (mask == 0) goto pop;
@@ -401,9 +435,11 @@ MLIB_INLINE bool closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
   const RayPre pre(ray);
   if (!may_enter(bvh, ray, pre, t_min, h.t)) return false;
   const PrimRef prior = tie_prior(h, instance);
-  const TriangleHit t = with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
-    return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
-        bvh, blocks, ray, pre, test, t_min, h.t, prior, counts);
+  const TriangleHit t = bvh.with_nodes([&](const auto* nodes) {
+    return with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
+      return closest_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
+          bvh, nodes, blocks, ray, pre, test, t_min, h.t, prior, counts);
+    });
   });
   if (t.prim == prior && t.t == h.t) return false;
   h = Hit{t.t, t.u, t.v, t.prim, instance};
@@ -412,8 +448,9 @@ MLIB_INLINE bool closest_triangle(const WideBvh<N>& bvh, const TriangleBlock* bl
 
 // Calls on_hit(prim, t) for triangles hit by `ray` in (t_min, t_max), in no particular
 // order, until it returns true; returns whether it did.
-template <int N, class Test, bool Finite, bool Count, class OnHit>
-inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks, const Ray& ray,
+template <int N, class Test, bool Finite, bool Count, class Node, class OnHit>
+inline bool any_triangle_walk(const WideBvh<N>& bvh, const Node* const nodes,
+                              const TriangleBlock* blocks, const Ray& ray,
                               const RayPre& pre, const Test& test, float t_min, float t_max,
                               OnHit&& on_hit, TraversalCounts* counts) {
   using V = mlib::vfloat<N>;
@@ -427,12 +464,11 @@ inline bool any_triangle_walk(const WideBvh<N>& bvh, const TriangleBlock* blocks
   alignas(64) std::uint32_t stack[kStackSize<N> + N - 1];  // slack: compress_in_order
   std::size_t sp = 0;
   std::uint32_t ref = bvh.root;
-  const WideNode<N>* const nodes = bvh.nodes.data();
   bool stopped = false;
   for (;;) {
     while (!(ref & kLeaf)) {
       local.node();
-      const WideNode<N>& node = nodes[ref];
+      const Node& node = nodes[ref];
       V entry;
       unsigned mask = nr.test(node, t_min_v, t_max_v, entry);
       if (mask == 0) goto pop;
@@ -510,9 +546,11 @@ MLIB_INLINE bool any_triangle(const WideBvh<N>& bvh, const TriangleBlock* blocks
                               TraversalCounts* counts) {
   if (bvh.root == kNoChild) return false;
   const RayPre pre(ray);
-  return with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
-    return any_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
-        bvh, blocks, ray, pre, test, t_min, t_max, on_hit, counts);
+  return bvh.with_nodes([&](const auto* nodes) {
+    return with_walk_form(ray, pre, counts, [&](auto finite, auto count) {
+      return any_triangle_walk<N, Test, decltype(finite)::value, decltype(count)::value>(
+          bvh, nodes, blocks, ray, pre, test, t_min, t_max, on_hit, counts);
+    });
   });
 }
 

@@ -78,16 +78,16 @@ bool triangle_boxes(const Accel& acc, const Aabb& region, std::size_t limit,
       }
       continue;
     }
-    const WideNode<N>& node = bvh.nodes[ref];
-    for (int c = 0; c < N; ++c) {
-      if (node.child[c] == kNoChild) continue;
-      Aabb box;
-      box.lo = vec4(node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]);
-      box.hi = vec4(node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]);
-      if (!overlap(padded(box), region)) continue;
-      if (top == 256) return false;  // deeper than any tree rt2 builds: prove nothing
-      stack[top++] = node.child[c];
-    }
+    const bool deeper = bvh.with_nodes([&](const auto* nodes) {
+      const auto& node = nodes[ref];
+      for (int c = 0; c < node.slots(); ++c) {
+        if (!overlap(padded(node.box(c)), region)) continue;
+        if (top == 256) return true;
+        stack[top++] = node.child[c];
+      }
+      return false;
+    });
+    if (deeper) return false;  // deeper than any tree rt2 builds: prove nothing
   }
   return true;
 }

@@ -414,6 +414,7 @@ struct Options {
   std::size_t incoherent_rays = std::size_t(1) << 20, chunk = 4096;
   bool embree = false;
   bool instanced = false;
+  rt2::BvhConfig bvh;  // the default, but for --nodes
   std::string embree_config;  // appended to every Embree device's configuration
   rt2::Isa isa = rt2::best_isa();  // rt2's ray kernels
   // The configuration string of an Embree device: `base` plus embree_config.
@@ -513,7 +514,7 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
     acc = rt2::Accel{};
     const bench::PeakMemory peak;
     const auto t0 = std::chrono::steady_clock::now();
-    acc = rt2::Accel::build(m.scene, rt2::BvhConfig{}, o.isa);
+    acc = rt2::Accel::build(m.scene, o.bvh, o.isa);
     rt2_ms.push_back(ms_since(t0));
     rt2_peak = std::max(rt2_peak, peak.bytes());
   });
@@ -543,11 +544,11 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
   const rt2::WideSah sah = acc.tree_sah();
   std::printf("mesh=%s tris=%zu set=build engine=rt2 threads=1 reps=%d build_ms_median=%.2f "
               "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f peak_mb=%.1f "
-              "isa=%s width=%d nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f sah_nodes=%.3f "
-              "sah_leaves=%.3f\n",
+              "isa=%s width=%d node_layout=%s nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f "
+              "sah_nodes=%.3f sah_leaves=%.3f\n",
               m.name.c_str(), m.tris, o.build_reps, r.median, r.min, r.max, bytes,
               double(bytes) / double(m.tris), double(rt2_peak) / 1e6, rt2::isa_name(acc.isa),
-              rt2::bvh_width(acc.isa),
+              rt2::bvh_width(acc.isa), acc.quantized_nodes() ? "quantized" : "plain",
               acc.wide_nodes, acc.stats.leaves, acc.blocks.size(),
               double(m.tris) / (4.0 * double(acc.blocks.size())), sah.nodes, sah.leaves);
   for (bool watertight : o.tests) {
@@ -695,6 +696,10 @@ int parse(int argc, char** argv, Options& o) {
   app.add_flag("--no-embree", no_embree, "rt2 only, even when built with Embree");
   app.add_flag("--instanced", o.instanced,
                "trace the mesh as one instance (a two-level tree) in both engines");
+  std::string nodes = "auto";
+  app.add_option("--nodes", nodes, "rt2's wide-tree nodes: auto (by the tree's size), plain or "
+                                   "quantized (default auto)")
+      ->check(CLI::IsMember({"auto", "plain", "quantized"}));
   std::string isa;
   app.add_option("--isa", isa, "rt2's ray kernels: sse41, avx2 or avx512 (default: the widest "
                                "this CPU runs)");
@@ -713,6 +718,9 @@ int parse(int argc, char** argv, Options& o) {
     return 2;
   };
   if (o.width % 4 || o.height % 4) return fail("--width and --height must be multiples of 4");
+  o.bvh.nodes = nodes == "plain"       ? rt2::NodeLayout::plain
+                : nodes == "quantized" ? rt2::NodeLayout::quantized
+                                       : rt2::NodeLayout::automatic;
   if (!isa.empty()) {
     try {
       o.isa = rt2::parse_isa(isa);
@@ -810,7 +818,7 @@ int main(int argc, char** argv) {
   const bench::FaceLocator faces(m.world_mesh());
   // The ray sets come from the mesh in the world: the same rays with and without --instanced.
   const std::vector<RaySet> sets =
-      make_sets(o, m, o.instanced ? rt2::Accel::build(m.world, rt2::BvhConfig{}, o.isa) : acc);
+      make_sets(o, m, o.instanced ? rt2::Accel::build(m.world, o.bvh, o.isa) : acc);
   std::vector<std::unique_ptr<tbb::task_arena>> arenas;
   for (int t : o.threads) arenas.push_back(std::make_unique<tbb::task_arena>(t));
   for (const RaySet& set : sets) trace_and_report(o, m, set, acc, embree_scenes, faces, arenas);

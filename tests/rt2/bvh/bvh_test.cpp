@@ -20,32 +20,36 @@ namespace {
 
 using test::kSampleScale;
 
-// Checks, for every runnable ISA and both triangle tests, that the wide BVH's closest hit
-// is brute force's: the same t, u, v and primitive, bit for bit (each primitive's values do
-// not depend on the visiting order, and ties go to the smaller index in both). Returns the
-// number of rays that hit.
+// Checks, for every runnable ISA, both node layouts and both triangle tests, that the wide
+// BVH's closest hit is brute force's: the same t, u, v and primitive, bit for bit (each
+// primitive's values do not depend on the visiting order, and ties go to the smaller index in
+// both). Returns the number of rays that hit.
 std::size_t expect_closest_equals_brute_force(const Scene& scene, const BvhConfig& config,
                                               const std::vector<Ray>& rays) {
   std::size_t hits = 0;
-  for (Isa isa : test::runnable_isas()) {
-    const Accel acc = Accel::build(scene, config, isa);
-    for (bool watertight : {false, true}) {
-      std::vector<Hit> bvh(rays.size());
-      const std::vector<float> t_max(rays.size(), kInfinity);
-      trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), bvh.data());
-      std::size_t mismatches = 0;
-      hits = 0;
-#pragma omp parallel for reduction(+ : hits, mismatches) schedule(dynamic, 256)
-      for (std::size_t i = 0; i < rays.size(); ++i) {
-        const Hit ref = test::brute_force(acc, rays[i], 0.0f, kInfinity, watertight);
-        hits += ref.found();
-        const Hit& b = bvh[i];
-        mismatches += !(b.t == ref.t && b.prim == ref.prim &&
-                        (prim_tag(b.prim) != kTriangleTag || (b.u == ref.u && b.v == ref.v)));
+  for (Isa isa : test::runnable_isas())
+    for (NodeLayout layout : {NodeLayout::plain, NodeLayout::quantized}) {
+      BvhConfig layout_config = config;
+      layout_config.nodes = layout;
+      const Accel acc = Accel::build(scene, layout_config, isa);
+      for (bool watertight : {false, true}) {
+        std::vector<Hit> bvh(rays.size());
+        const std::vector<float> t_max(rays.size(), kInfinity);
+        trace_closest(acc, {watertight}, rays.data(), t_max.data(), rays.size(), bvh.data());
+        std::size_t mismatches = 0;
+        hits = 0;
+  #pragma omp parallel for reduction(+ : hits, mismatches) schedule(dynamic, 256)
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          const Hit ref = test::brute_force(acc, rays[i], 0.0f, kInfinity, watertight);
+          hits += ref.found();
+          const Hit& b = bvh[i];
+          mismatches += !(b.t == ref.t && b.prim == ref.prim &&
+                          (prim_tag(b.prim) != kTriangleTag || (b.u == ref.u && b.v == ref.v)));
+        }
+        EXPECT_EQ(mismatches, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast")
+                                  << (layout == NodeLayout::quantized ? " quantized" : " plain");
       }
-      EXPECT_EQ(mismatches, 0u) << isa_name(isa) << (watertight ? " watertight" : " fast");
     }
-  }
   return hits;
 }
 
@@ -421,13 +425,15 @@ TEST(Bvh, EveryIsaFindsTheSameHitsBitForBit) {
 }
 
 // The wide tree holds every triangle exactly once, in blocks of at most four whose leaf
-// runs end with a block marked last; each child's box is inside its node's box; unused
-// slots hold the empty box; no node has more than its width of children.
+// runs end with a block marked last; every triangle lies in the box of each slot above it;
+// a plain node's child boxes are inside its own (a quantized one's are rounded outward in
+// its own frame); no node has more than its width of children, nor fewer than two.
 template <int N>
 void expect_wide_tree_is_well_formed(const Accel& acc, std::uint32_t max_leaf) {
   const WideBvh<N>& w = acc.wide<N>();
   std::vector<int> seen(acc.tris.size(), 0);
   std::uint32_t leaves = 0;
+  std::vector<Aabb> above;  // the slot boxes from the root down to the current leaf
   const auto visit_leaf = [&](std::uint32_t first) {
     ++leaves;
     std::uint32_t count = 0;
@@ -437,55 +443,57 @@ void expect_wide_tree_is_well_formed(const Accel& acc, std::uint32_t max_leaf) {
         if (block.prim_of(l) != TriangleBlock::kNoPrim) {
           ++seen[block.prim_of(l)];
           ++count;
+          const Triangle& t = acc.tris[block.prim_of(l)];
+          for (const Aabb& box : above)
+            for (int v = 0; v < 3; ++v) EXPECT_TRUE(box.contains(t.vertex(v)));
         }
       if (block.last()) break;
     }
     EXPECT_LE(count, max_leaf);
   };
-  if (w.root & kLeaf) {
-    visit_leaf(w.root & ~kLeaf);
-  } else {
-    for (const WideNode<N>& node : w.nodes)
-      for (int i = 0; i < N; ++i) {
-        const bool empty = node.bounds[0][i] > node.bounds[1][i];
-        if (empty) continue;
-        if (node.child[i] & kLeaf) {
-          visit_leaf(node.child[i] & ~kLeaf);
-          continue;
-        }
-        const WideNode<N>& kid = w.nodes[node.child[i]];
-        for (int k = 0; k < N; ++k) {
-          if (kid.bounds[0][k] > kid.bounds[1][k]) continue;
-          for (int a = 0; a < 3; ++a) {
-            EXPECT_GE(kid.bounds[2 * a][k], node.bounds[2 * a][i]);
-            EXPECT_LE(kid.bounds[2 * a + 1][k], node.bounds[2 * a + 1][i]);
-          }
-        }
+  w.with_nodes([&](const auto* nodes) {
+    const auto visit = [&](const auto& self, std::uint32_t ref) -> void {
+      if (ref & kLeaf) {
+        visit_leaf(ref & ~kLeaf);
+        return;
       }
-  }
+      const auto& node = nodes[ref];
+      EXPECT_GE(node.slots(), 2);
+      EXPECT_LE(node.slots(), N);
+      for (int i = 0; i < node.slots(); ++i) {
+        if (!w.quantized && !(node.child[i] & kLeaf))
+          for (int k = 0; k < nodes[node.child[i]].slots(); ++k)
+            for (int a = 0; a < 3; ++a) {
+              EXPECT_GE(nodes[node.child[i]].box(k).lo[a], node.box(i).lo[a]);
+              EXPECT_LE(nodes[node.child[i]].box(k).hi[a], node.box(i).hi[a]);
+            }
+        above.push_back(node.box(i));
+        self(self, node.child[i]);
+        above.pop_back();
+      }
+    };
+    visit(visit, w.root);
+  });
   EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
   EXPECT_EQ(leaves, acc.stats.leaves);
   EXPECT_EQ(leaves, w.leaves);
   // The tree's box (WideBvh::bounds), which a ray from outside must enter to be walked,
-  // holds every triangle and the root's child boxes.
+  // holds every triangle.
   for (const Triangle& t : acc.tris)
     for (int i = 0; i < 3; ++i) EXPECT_TRUE(w.bounds.contains(t.vertex(i)));
-  if (!(w.root & kLeaf))
-    for (int i = 0; i < N; ++i)
-      if (w.nodes[0].bounds[0][i] <= w.nodes[0].bounds[1][i])
-        for (int a = 0; a < 3; ++a) {
-          EXPECT_GE(w.nodes[0].bounds[2 * a][i], w.bounds.lo[a]);
-          EXPECT_LE(w.nodes[0].bounds[2 * a + 1][i], w.bounds.hi[a]);
-        }
 }
 
 TEST(Bvh, TheWideTreeHoldsEveryTriangleOnceInBlocksUnderItsParentsBox) {
   const Scene scene = test::geometry_scene({test::random_soup(3000, 0.2f, 13)});
   for (std::uint32_t leaf : {1u, 4u, 7u, 64u, 5000u})
-    for (Isa isa : test::runnable_isas()) {
-      const Accel acc = Accel::build(scene, BvhConfig{leaf, Split::sah, 16}, isa);
-      with_bvh_width(isa, [&](auto n) { expect_wide_tree_is_well_formed<n()>(acc, leaf); });
-    }
+    for (Isa isa : test::runnable_isas())
+      for (NodeLayout layout : {NodeLayout::plain, NodeLayout::quantized}) {
+        BvhConfig config{leaf, Split::sah, 16};
+        config.nodes = layout;
+        const Accel acc = Accel::build(scene, config, isa);
+        ASSERT_EQ(acc.quantized_nodes(), layout == NodeLayout::quantized);
+        with_bvh_width(isa, [&](auto n) { expect_wide_tree_is_well_formed<n()>(acc, leaf); });
+      }
 }
 
 // Every node's octant orders (WideNode::octant_order) list each slot once per octant:

@@ -67,7 +67,8 @@ Batch tiles(vec4 eye, vec4 center, float half, int width, int height) {
 }
 
 // The packet answers against one call of the single-ray kernel per ray, for every runnable
-// instruction set and both tests. Returns the packets walked as packets (summed over runs).
+// instruction set, both node layouts and both tests. Returns the packets walked as packets
+// (summed over runs).
 struct Compared {
   std::size_t closest_mismatches = 0, occluded_mismatches = 0, hits = 0, occluded = 0;
   std::uint64_t packets = 0, packet_rays = 0;
@@ -75,40 +76,44 @@ struct Compared {
 
 Compared compare(const Scene& scene, const Batch& b, const std::string& what) {
   Compared c;
-  for (Isa isa : test::runnable_isas()) {
-    const Accel acc = Accel::build(scene, BvhConfig{}, isa);
-    for (bool watertight : {false, true}) {
-      const TraceOptions opt{watertight};
-      const std::size_t n = b.rays.size();
-      std::vector<Hit> single(n), packed(n);
-      std::vector<std::uint8_t> occ_single(n, 7), occ_packed(n, 7);
-      trace_closest(acc, opt, b.rays.data(), b.t_max.data(), n, single.data());
-      trace_occluded(acc, opt, b.rays.data(), b.t_max.data(), n, occ_single.data());
-      TraversalCounts counts;
-      trace_closest_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(), b.packets(),
-                            packed.data(), &counts);
-      trace_occluded_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(),
-                             b.packets(), occ_packed.data(), &counts);
-      for (std::size_t i = 0; i < n; ++i) {
-        const bool same_hit = test::bitwise_same(single[i], packed[i]);
-        const bool same_occ = occ_single[i] == occ_packed[i];
-        c.closest_mismatches += !same_hit;
-        c.occluded_mismatches += !same_occ;
-        c.hits += single[i].found();
-        c.occluded += occ_single[i];
-        if (!same_hit || !same_occ) {
-          ADD_FAILURE() << what << ": isa " << isa_name(isa) << " watertight " << watertight
-                        << " ray " << i << " single t " << single[i].t << " prim "
-                        << single[i].prim << " occ " << int(occ_single[i]) << ", packet t "
-                        << packed[i].t << " prim " << packed[i].prim << " occ "
-                        << int(occ_packed[i]);
-          return c;
+  for (Isa isa : test::runnable_isas())
+    for (NodeLayout layout : {NodeLayout::plain, NodeLayout::quantized}) {
+      BvhConfig config;
+      config.nodes = layout;
+      const Accel acc = Accel::build(scene, config, isa);
+      for (bool watertight : {false, true}) {
+        const TraceOptions opt{watertight};
+        const std::size_t n = b.rays.size();
+        std::vector<Hit> single(n), packed(n);
+        std::vector<std::uint8_t> occ_single(n, 7), occ_packed(n, 7);
+        trace_closest(acc, opt, b.rays.data(), b.t_max.data(), n, single.data());
+        trace_occluded(acc, opt, b.rays.data(), b.t_max.data(), n, occ_single.data());
+        TraversalCounts counts;
+        trace_closest_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(), b.packets(),
+                              packed.data(), &counts);
+        trace_occluded_packets(acc, opt, b.rays.data(), b.t_max.data(), b.begin.data(),
+                               b.packets(), occ_packed.data(), &counts);
+        for (std::size_t i = 0; i < n; ++i) {
+          const bool same_hit = test::bitwise_same(single[i], packed[i]);
+          const bool same_occ = occ_single[i] == occ_packed[i];
+          c.closest_mismatches += !same_hit;
+          c.occluded_mismatches += !same_occ;
+          c.hits += single[i].found();
+          c.occluded += occ_single[i];
+          if (!same_hit || !same_occ) {
+            ADD_FAILURE() << what << ": isa " << isa_name(isa) << " quantized "
+                          << (layout == NodeLayout::quantized) << " watertight " << watertight
+                          << " ray " << i << " single t " << single[i].t << " prim "
+                          << single[i].prim << " occ " << int(occ_single[i]) << ", packet t "
+                          << packed[i].t << " prim " << packed[i].prim << " occ "
+                          << int(occ_packed[i]);
+            return c;
+          }
         }
+        c.packets += counts.packets;
+        c.packet_rays += counts.packet_rays;
       }
-      c.packets += counts.packets;
-      c.packet_rays += counts.packet_rays;
     }
-  }
   return c;
 }
 

@@ -34,8 +34,11 @@ Mesh deformed(const Mesh& m, float twist, float jitter, unsigned seed) {
 
 template <int N>
 bool same_tree(const WideBvh<N>& a, const WideBvh<N>& b) {
-  return a.root == b.root && a.nodes.size() == b.nodes.size() &&
+  return a.root == b.root && a.quantized == b.quantized && a.nodes.size() == b.nodes.size() &&
+         a.quantized_nodes.size() == b.quantized_nodes.size() &&
          std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(WideNode<N>)) == 0 &&
+         std::memcmp(a.quantized_nodes.data(), b.quantized_nodes.data(),
+                     a.quantized_nodes.size() * sizeof(QuantizedNode<N>)) == 0 &&
          std::memcmp(&a.bounds, &b.bounds, sizeof(Aabb)) == 0;
 }
 
@@ -47,17 +50,20 @@ bool same_blocks(const TriangleBlocks& a, const TriangleBlocks& b) {
 TEST(Refit, ARefitToUnmovedTrianglesIsTheBuiltTreeByteForByte) {
   const Scene scene = test::geometry_scene({test::random_soup(3000, 0.3f, 5)});
   for (Isa isa : test::runnable_isas())
-    for (int threads : {1, 2}) {
-      Accel acc = Accel::build(scene, BvhConfig{}, isa);
-      with_bvh_width(isa, [&](auto width) {
-        constexpr int N = decltype(width)::value;
-        const WideBvh<N> built = acc.wide<N>();
-        const TriangleBlocks blocks = acc.blocks;
-        refit_bvh<N>(acc.wide<N>(), acc.tris, acc.blocks, threads);
-        EXPECT_TRUE(same_tree(built, acc.wide<N>())) << isa_name(isa) << ", " << threads;
-        EXPECT_TRUE(same_blocks(blocks, acc.blocks)) << isa_name(isa) << ", " << threads;
-      });
-    }
+    for (int threads : {1, 2})
+      for (NodeLayout layout : {NodeLayout::plain, NodeLayout::quantized}) {
+        BvhConfig config;
+        config.nodes = layout;
+        Accel acc = Accel::build(scene, config, isa);
+        with_bvh_width(isa, [&](auto width) {
+          constexpr int N = decltype(width)::value;
+          const WideBvh<N> built = acc.wide<N>();
+          const TriangleBlocks blocks = acc.blocks;
+          refit_bvh<N>(acc.wide<N>(), acc.tris, acc.blocks, threads);
+          EXPECT_TRUE(same_tree(built, acc.wide<N>())) << isa_name(isa) << ", " << threads;
+          EXPECT_TRUE(same_blocks(blocks, acc.blocks)) << isa_name(isa) << ", " << threads;
+        });
+      }
 }
 
 // Every ray's closest hit and any hit through `refit` equal `fresh`'s and brute force's, bit
@@ -110,24 +116,29 @@ TEST(Refit, RefitTreesAnswerEveryRayAsAFreshBuildAndBruteForceOnDeformedMeshes) 
   const std::string bunny = std::string(RT2_SOURCE_DIR) + "/data/meshes/bunny00.obj";
   if (std::filesystem::exists(bunny)) meshes.push_back({"bunny", load_scene(bunny).meshes[0]});
   for (const auto& [name, mesh] : meshes)
-    for (Isa isa : test::runnable_isas()) {
-      const std::size_t brute_every = mesh.faces.size() > 10000 ? 401 : 7;
-      Accel acc = Accel::build(test::geometry_scene({mesh}), BvhConfig{}, isa);
-      // Deformed further and further, each refit from the one before (as frames are).
-      for (int frame = 1; frame <= 3; ++frame) {
-        const Scene moved = test::geometry_scene(
-            {deformed(mesh, 0.6f * float(frame), 0.01f * float(frame), unsigned(frame))});
-        ASSERT_TRUE(same_topology(test::geometry_scene({mesh}), moved));
-        acc.refit(moved, BvhConfig{}, 2);
-        const Accel fresh = Accel::build(moved, BvhConfig{}, isa);
-        const std::vector<Ray> rays =
-            test::random_rays(fresh, std::size_t(20000 / test::kSampleScale), 40u + unsigned(frame));
-        const std::string what = name + ", " + isa_name(isa) + ", frame " + std::to_string(frame);
-        EXPECT_GT(expect_refit_answers_as_fresh(acc, fresh, rays, what.c_str(), brute_every),
-                  rays.size() / 4)
-            << what;
+    for (Isa isa : test::runnable_isas())
+      for (NodeLayout layout : {NodeLayout::plain, NodeLayout::quantized}) {
+        if (name != "soup" && layout == NodeLayout::quantized) continue;  // time
+        BvhConfig config;
+        config.nodes = layout;
+        const std::size_t brute_every = mesh.faces.size() > 10000 ? 401 : 7;
+        Accel acc = Accel::build(test::geometry_scene({mesh}), config, isa);
+        // Deformed further and further, each refit from the one before (as frames are).
+        for (int frame = 1; frame <= 3; ++frame) {
+          const Scene moved = test::geometry_scene(
+              {deformed(mesh, 0.6f * float(frame), 0.01f * float(frame), unsigned(frame))});
+          ASSERT_TRUE(same_topology(test::geometry_scene({mesh}), moved));
+          acc.refit(moved, config, 2);
+          const Accel fresh = Accel::build(moved, config, isa);
+          const std::vector<Ray> rays =
+              test::random_rays(fresh, std::size_t(20000 / test::kSampleScale), 40u + unsigned(frame));
+          const std::string what = name + ", " + isa_name(isa) + ", frame " + std::to_string(frame) +
+                                   (layout == NodeLayout::quantized ? ", quantized" : "");
+          EXPECT_GT(expect_refit_answers_as_fresh(acc, fresh, rays, what.c_str(), brute_every),
+                    rays.size() / 4)
+              << what;
+        }
       }
-    }
 }
 
 TEST(Refit, RefitInstancedMeshesAnswerAsAFreshBuildOfTheMovedScene) {
