@@ -28,7 +28,7 @@ static_assert(sizeof(BvhNode) == 32);
 enum class Split { midpoint, sah };
 
 // The builder's knobs.
-enum class NodeLayout { automatic, plain, quantized };
+enum class NodeLayout { plain, quantized };
 
 struct BvhConfig {
   // A node with at most this many primitives becomes a leaf; any bigger node is split
@@ -43,9 +43,9 @@ struct BvhConfig {
   // tested a TriangleBlock (4 triangles) at a time, so a split into 4 + 4 costs less than
   // one into 3 + 5, and leaves come out fuller (Embree's rule). 1 is the plain SAH.
   std::uint32_t sah_block = 4;
-  // The wide tree's nodes (bvh/wide_bvh.h): plain float boxes, quantized ones, or chosen
-  // by the tree's size (kQuantizeBytes).
-  NodeLayout nodes = NodeLayout::automatic;
+  // The wide tree's nodes (bvh/wide_bvh.h): float boxes, or boxes quantized to 8 bits
+  // (about 10 % fewer bytes per triangle, and slower rays: docs/performance.md).
+  NodeLayout nodes = NodeLayout::plain;
 };
 
 struct BvhStats {

@@ -419,9 +419,7 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
   const std::size_t bytes =
       out.nodes.size() * sizeof(WideNode<N>) + leaf_blocks * sizeof(TriangleBlock);
   out.prefetch_pushed = bytes >= kPrefetchPushedBytes;
-  if (layout == NodeLayout::quantized ||
-      (layout == NodeLayout::automatic && bytes >= kQuantizeBytes))
-    quantize_nodes(out);
+  if (layout == NodeLayout::quantized) quantize_nodes(out);
   return out;
 }
 

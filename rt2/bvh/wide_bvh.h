@@ -7,8 +7,8 @@
 // node's subtree into at most N slots, chosen by dynamic programming so that the sum of the
 // wide nodes' areas is least (Ylitie et al. 2017; wide_build.cpp). The binary tree's leaves
 // and padded boxes (build.cpp) are kept, so the thesis's max-leaf-size rule still holds.
-// Large trees store their nodes' boxes quantized to 8 bits (QuantizedNode), small ones as
-// floats (WideNode). Plain data; the builder makes it, the traversal (rt2/kernel/wide_traverse.h) reads it.
+// The nodes' boxes are floats (WideNode), or on request quantized to 8 bits (QuantizedNode).
+// Plain data; the builder makes it, the traversal (rt2/kernel/wide_traverse.h) reads it.
 #pragma once
 
 #include <bit>
@@ -141,10 +141,6 @@ struct WideBvh {
   }
 };
 
-// The tree size (nodes and blocks, as WideNode) from which collapse_bvh quantizes the nodes
-// under NodeLayout::automatic: below it the tree mostly stays in the caches, and the plain
-// node's shorter test wins; above, the quantized node's fewer bytes do.
-inline constexpr std::size_t kQuantizeBytes = std::size_t(16) << 20;
 
 // The tree size from which collapse_bvh sets WideBvh::prefetch_pushed.
 inline constexpr std::size_t kPrefetchPushedBytes = std::size_t(16) << 20;
@@ -185,7 +181,7 @@ WideSah wide_sah(const WideBvh<N>& bvh, const TriangleBlock* blocks);
 // leaves' blocks to `blocks` (prim = index into `triangles`).
 template <int N>
 WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
-                        TriangleBlocks& blocks, NodeLayout layout = NodeLayout::automatic);
+                        TriangleBlocks& blocks, NodeLayout layout = NodeLayout::plain);
 
 // Refits `bvh`, whose blocks are in `blocks`, to `triangles` moved (the same triangles, by
 // the index the blocks hold, at new positions): the blocks take their triangles' vertices and

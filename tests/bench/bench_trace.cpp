@@ -696,10 +696,9 @@ int parse(int argc, char** argv, Options& o) {
   app.add_flag("--no-embree", no_embree, "rt2 only, even when built with Embree");
   app.add_flag("--instanced", o.instanced,
                "trace the mesh as one instance (a two-level tree) in both engines");
-  std::string nodes = "auto";
-  app.add_option("--nodes", nodes, "rt2's wide-tree nodes: auto (by the tree's size), plain or "
-                                   "quantized (default auto)")
-      ->check(CLI::IsMember({"auto", "plain", "quantized"}));
+  std::string nodes = "plain";
+  app.add_option("--nodes", nodes, "rt2's wide-tree nodes: plain or quantized (default plain)")
+      ->check(CLI::IsMember({"plain", "quantized"}));
   std::string isa;
   app.add_option("--isa", isa, "rt2's ray kernels: sse41, avx2 or avx512 (default: the widest "
                                "this CPU runs)");
@@ -718,9 +717,7 @@ int parse(int argc, char** argv, Options& o) {
     return 2;
   };
   if (o.width % 4 || o.height % 4) return fail("--width and --height must be multiples of 4");
-  o.bvh.nodes = nodes == "plain"       ? rt2::NodeLayout::plain
-                : nodes == "quantized" ? rt2::NodeLayout::quantized
-                                       : rt2::NodeLayout::automatic;
+  o.bvh.nodes = nodes == "quantized" ? rt2::NodeLayout::quantized : rt2::NodeLayout::plain;
   if (!isa.empty()) {
     try {
       o.isa = rt2::parse_isa(isa);

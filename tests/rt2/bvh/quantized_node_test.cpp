@@ -148,30 +148,5 @@ TEST(QuantizedNode, QuantizedTreesAnswerEveryRayAsPlainTreesOnEveryIsa) {
     }
 }
 
-// Under NodeLayout::automatic, a tree of kQuantizeBytes or more (as plain nodes and blocks)
-// is quantized and a smaller one is not.
-TEST(QuantizedNode, AutomaticLayoutQuantizesExactlyTheTreesOfKQuantizeBytes) {
-  for (std::size_t triangles : {1000u, 400000u}) {
-    const Mesh soup = test::random_soup(triangles, 0.01f, 63);
-    std::vector<Triangle> tris;
-    std::vector<Aabb> boxes;
-    for (const auto& f : soup.faces) {
-      tris.push_back(Triangle::make(soup.positions[f[0]], soup.positions[f[1]], soup.positions[f[2]]));
-      Aabb b;
-      for (std::uint32_t v : f) b.grow(soup.positions[v]);
-      boxes.push_back(b);
-    }
-    const Bvh bvh = build_bvh(boxes, BvhConfig{});
-    TriangleBlocks plain_blocks, blocks;
-    const WideBvh<8> plain = collapse_bvh<8>(bvh, tris, plain_blocks, NodeLayout::plain);
-    const WideBvh<8> chosen = collapse_bvh<8>(bvh, tris, blocks, NodeLayout::automatic);
-    const std::size_t bytes =
-        plain.nodes.size() * sizeof(WideNode<8>) + plain_blocks.size() * sizeof(TriangleBlock);
-    EXPECT_EQ(bytes >= kQuantizeBytes, triangles > 1000u);  // one tree on each side
-    EXPECT_EQ(chosen.quantized, bytes >= kQuantizeBytes) << triangles << " triangles";
-    EXPECT_EQ(chosen.node_count(), plain.nodes.size());
-  }
-}
-
 }  // namespace
 }  // namespace rt2
