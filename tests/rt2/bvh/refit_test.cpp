@@ -32,19 +32,23 @@ Mesh deformed(const Mesh& m, float twist, float jitter, unsigned seed) {
   return out;
 }
 
+// Whether two arrays of n elements hold the same bytes (an empty one's data may be null).
+template <class T>
+bool same_bytes(const T* a, const T* b, std::size_t n) {
+  return n == 0 || std::memcmp(a, b, n * sizeof(T)) == 0;
+}
+
 template <int N>
 bool same_tree(const WideBvh<N>& a, const WideBvh<N>& b) {
   return a.root == b.root && a.quantized == b.quantized && a.nodes.size() == b.nodes.size() &&
          a.quantized_nodes.size() == b.quantized_nodes.size() &&
-         std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(WideNode<N>)) == 0 &&
-         std::memcmp(a.quantized_nodes.data(), b.quantized_nodes.data(),
-                     a.quantized_nodes.size() * sizeof(QuantizedNode<N>)) == 0 &&
+         same_bytes(a.nodes.data(), b.nodes.data(), a.nodes.size()) &&
+         same_bytes(a.quantized_nodes.data(), b.quantized_nodes.data(), a.quantized_nodes.size()) &&
          std::memcmp(&a.bounds, &b.bounds, sizeof(Aabb)) == 0;
 }
 
 bool same_blocks(const TriangleBlocks& a, const TriangleBlocks& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), a.size() * sizeof(TriangleBlock)) == 0;
+  return a.size() == b.size() && same_bytes(a.data(), b.data(), a.size());
 }
 
 TEST(Refit, ARefitToUnmovedTrianglesIsTheBuiltTreeByteForByte) {
