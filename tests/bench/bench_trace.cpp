@@ -9,6 +9,7 @@
 // ray set, engine, test and thread count the Mrays/s and how the engines' answers differ.
 // The scene, the ray sets, the measurement and the output are defined below, each at its code.
 #include <CLI/CLI.hpp>
+#include <omp.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -319,7 +320,7 @@ Agreement compare(const RaySet& set, const Runner& a, const Runner& b, float sca
 //   rt2_mode=release rt2_arch=sse41 rt2_isa=avx512 rt2_width=8 chunk=4096  (rt2_isa: the ray
 //       kernels' instruction set, the widest the CPU runs unless --isa forces one)
 //   embree=3.13.5 embree_native_ray16=1 embree_tasking=tbb  (or embree=none / embree=off)
-//   mesh=M tris=N set=build engine=rt2 threads=1 reps=... build_ms_median=... ...
+//   mesh=M tris=N set=build engine=rt2 threads=K reps=... build_ms_median=... ...
 //       bytes=... bytes_per_tri=... peak_mb=... sah_nodes=... sah_leaves=...
 //       (and engine=embree test=T lines, then ratio lines)
 //   mesh=M set=S engine=E test=T threads=K rays=... mrays_median=... mrays_min=...
@@ -391,8 +392,9 @@ const char* test_name(bool watertight) { return watertight ? "watertight" : "fas
 //                    only; a lane is invalid where the primary ray missed).
 // Embree picks the widest instruction set of the CPU (rt2 is built for scons arch=...);
 // --embree-config isa=sse4.2 (or avx2, ...) holds it to a narrower one.
-// Build time: one thread, the median of --build-reps builds (5; interleaved like the
-// runs): rt2's Accel::build, Embree's rtcCommitScene on a device created with "threads=1".
+// Build time: at each --threads count, the median of --build-reps builds (5; interleaved
+// like the runs): rt2's Accel::build with OpenMP held to K threads (omp_set_num_threads),
+// Embree's rtcCommitScene on a device created with "threads=K".
 // Each engine's previous structure is released before its clock starts (so that freeing it
 // is not timed and its pages can serve the next build), and each round of builds starts
 // with the next engine (see build_and_report).
@@ -489,20 +491,23 @@ std::vector<RaySet> make_sets(const Options& o, const Model& m, const rt2::Accel
   return sets;
 }
 
-// Builds each engine's structure o.build_reps times on one thread (interleaved), prints
-// the build lines, and returns rt2's Accel.
-rt2::Accel build_and_report(const Options& o, const Model& m) {
+// Builds each engine's structure o.build_reps times on `threads` threads (interleaved; rt2's
+// OpenMP team and Embree's device held to that count), prints the build lines, and returns
+// rt2's Accel.
+rt2::Accel build_and_report(const Options& o, const Model& m, int threads) {
   std::vector<double> rt2_ms;
   rt2::Accel acc;
   std::vector<std::vector<double>> embree_ms(2);
   std::vector<long long> embree_bytes(2, 0);
   std::size_t rt2_peak = 0, embree_peak[2] = {0, 0};  // the largest over the reps
+  const int omp_threads = omp_get_max_threads();
+  omp_set_num_threads(threads);  // Accel::build's parallel regions (bvh/build.cpp, refit)
 #if defined(RT2_HAVE_EMBREE)
-  // One thread: Embree's TBB scheduler is capped by a process-wide tbb::global_control,
-  // which would cap bench_trace's own loops too, so this device is released before any
-  // tracing (the tracing device keeps the default thread count).
-  RTCDevice dev =
-      o.embree ? bench::embree_device(o.device_config("threads=1").c_str()) : nullptr;
+  // Embree's TBB scheduler is capped by a process-wide tbb::global_control, which would cap
+  // bench_trace's own loops too, so this device is released before any tracing (the
+  // tracing device keeps the default thread count).
+  const std::string config = "threads=" + std::to_string(threads);
+  RTCDevice dev = o.embree ? bench::embree_device(o.device_config(config).c_str()) : nullptr;
 #endif
   // One round: rt2's build, then Embree's for each test. Each round starts one build further
   // along the list (rt2 first, then Embree's first test, ...): a build that gets memory freed
@@ -539,14 +544,15 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
 #if defined(RT2_HAVE_EMBREE)
   if (dev) rtcReleaseDevice(dev);
 #endif
+  omp_set_num_threads(omp_threads);
   const Stats r = stats(rt2_ms);
   const std::size_t bytes = rt2::accel_bytes(acc);
   const rt2::WideSah sah = acc.tree_sah();
-  std::printf("mesh=%s tris=%zu set=build engine=rt2 threads=1 reps=%d build_ms_median=%.2f "
+  std::printf("mesh=%s tris=%zu set=build engine=rt2 threads=%d reps=%d build_ms_median=%.2f "
               "build_ms_min=%.2f build_ms_max=%.2f bytes=%zu bytes_per_tri=%.1f peak_mb=%.1f "
               "isa=%s width=%d node_layout=%s nodes=%u leaves=%u blocks=%zu lanes_filled=%.3f "
               "sah_nodes=%.3f sah_leaves=%.3f\n",
-              m.name.c_str(), m.tris, o.build_reps, r.median, r.min, r.max, bytes,
+              m.name.c_str(), m.tris, threads, o.build_reps, r.median, r.min, r.max, bytes,
               double(bytes) / double(m.tris), double(rt2_peak) / 1e6, rt2::isa_name(acc.isa),
               rt2::bvh_width(acc.isa), acc.quantized_nodes() ? "quantized" : "plain",
               acc.wide_nodes, acc.stats.leaves, acc.blocks.size(),
@@ -555,13 +561,14 @@ rt2::Accel build_and_report(const Options& o, const Model& m) {
     if (embree_ms[watertight].empty()) continue;
     const Stats e = stats(embree_ms[watertight]);
     const long long eb = embree_bytes[watertight];
-    std::printf("mesh=%s tris=%zu set=build engine=embree test=%s threads=1 reps=%d "
+    std::printf("mesh=%s tris=%zu set=build engine=embree test=%s threads=%d reps=%d "
                 "build_ms_median=%.2f build_ms_min=%.2f build_ms_max=%.2f bytes=%lld "
                 "bytes_per_tri=%.1f peak_mb=%.1f\n",
-                m.name.c_str(), m.tris, test_name(watertight), o.build_reps, e.median, e.min,
-                e.max, eb, double(eb) / double(m.tris), double(embree_peak[watertight]) / 1e6);
-    std::printf("mesh=%s set=build test=%s threads=1 ratio=%.3f\n", m.name.c_str(),
-                test_name(watertight), r.median > 0 ? e.median / r.median : 0.0);
+                m.name.c_str(), m.tris, test_name(watertight), threads, o.build_reps, e.median,
+                e.min, e.max, eb, double(eb) / double(m.tris),
+                double(embree_peak[watertight]) / 1e6);
+    std::printf("mesh=%s set=build test=%s threads=%d ratio=%.3f\n", m.name.c_str(),
+                test_name(watertight), threads, r.median > 0 ? e.median / r.median : 0.0);
   }
   std::fflush(stdout);
   return acc;
@@ -800,7 +807,8 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "bench_trace: %s: %zu triangles, %d builds per engine\n", m.name.c_str(),
                m.tris, o.build_reps);
 
-  const rt2::Accel acc = build_and_report(o, m);
+  rt2::Accel acc;
+  for (int t : o.threads) acc = build_and_report(o, m, t);  // the same tree at any count
   EmbreeScene embree_scenes[2] = {nullptr, nullptr};
 #if defined(RT2_HAVE_EMBREE)
   RTCDevice dev = o.embree ? bench::embree_device(o.device_config("").c_str()) : nullptr;
