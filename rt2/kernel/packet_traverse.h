@@ -201,35 +201,16 @@ struct PacketRays {
   // The frustum against a node's N child boxes: bit i set when some ray may enter child i
   // within [t_min, t_max_padded / kSlabPad], `entry` a lower bound of their entry
   // distances. As NodeRay::test (the integer form), with the frustum's bounds.
-  MLIB_INLINE unsigned test(const WideNode<N>& node, V t_min, V t_max_padded, V& entry) const {
-    V bn[3], bf[3];
-    for (int a = 0; a < 3; ++a) {
-      bn[a] = V::load(node.bounds[near[a]]);
-      bf[a] = V::load(node.bounds[far[a]]);
-    }
-    return test(bn, bf, t_min, t_max_padded, entry);
-  }
-  // The same for a quantized node's used slots, its boxes decoded.
-  MLIB_INLINE unsigned test(const QuantizedNode<N>& node, V t_min, V t_max_padded,
-                            V& entry) const {
-    V bn[3], bf[3];
-    for (int a = 0; a < 3; ++a) {
-      const V scale = V::broadcast(node.scale(a));
-      bn[a] = node_planes(node, near[a], scale);
-      bf[a] = node_planes(node, far[a], scale);
-    }
-    return test(bn, bf, t_min, t_max_padded, entry) & node.used;
-  }
-  // The frustum against near planes bn and far planes bf, per axis.
-  MLIB_INLINE unsigned test(const V (&bn)[3], const V (&bf)[3], V t_min, V t_max_padded,
-                            V& entry) const {
+  template <class Node>
+  MLIB_INLINE unsigned test(const Node& node, V t_min, V t_max_padded, V& entry) const {
     V n[3], f[3];
     for (int a = 0; a < 3; ++a) {
-      n[a] = (bn[a] - o_near[a]) * i_near[a];
-      f[a] = (bf[a] - o_far[a]) * i_far[a];
+      n[a] = (node_row(node, near[a]) - o_near[a]) * i_near[a];
+      f[a] = (node_row(node, far[a]) - o_far[a]) * i_far[a];
     }
     entry = imax(imax(n[0], n[1]), imax(n[2], t_min));
-    return mlib::bits(ile(entry, imin(imin(f[0], f[1]), imin(f[2], t_max_padded))));
+    return mlib::bits(ile(entry, imin(imin(f[0], f[1]), imin(f[2], t_max_padded)))) &
+           used_slots(node);
   }
 
   // The lanes of `lanes` whose rays enter child `slot` of `node` within [t_min,
@@ -441,7 +422,7 @@ inline void closest_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock* 
                                     const PacketRays<N>& pr, const PacketTest& test,
                                     PacketMask lanes, float t_min, const float* t_bound,
                                     Hit* hits, TraversalCounts* counts) {
-  bvh.with_nodes([&](const auto* nodes) {
+  with_walk_nodes(bvh, [&](const auto* nodes) {
     closest_triangle_packet_walk(bvh, nodes, blocks, pr, test, lanes, t_min, t_bound, hits,
                                  counts);
   });
@@ -453,7 +434,7 @@ inline PacketMask any_triangle_packet(const WideBvh<N>& bvh, const TriangleBlock
                                       const PacketRays<N>& pr, const PacketTest& test,
                                       PacketMask lanes, float t_min, const float* t_max,
                                       OnHit&& on_hit, TraversalCounts* counts) {
-  return bvh.with_nodes([&](const auto* nodes) {
+  return with_walk_nodes(bvh, [&](const auto* nodes) {
     return any_triangle_packet_walk(bvh, nodes, blocks, pr, test, lanes, t_min, t_max, on_hit,
                                     counts);
   });
