@@ -1,6 +1,7 @@
 // rt2/bvh/wide_build.cpp — collapsing the binary tree into the wide one (see wide_bvh.h).
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -15,7 +16,19 @@ namespace rt2 {
 
 namespace {
 
-constexpr int kMinScaleExponent = -126, kMaxScaleExponent = 120;  // see WideNode
+constexpr int kMinScaleExponent = -126, kMaxScaleExponent = 120;  // see QuantizedNode
+
+// x, or the nearest multiple of 2^-126 below it when |x| < 2^-102 (larger floats are such
+// multiples already): a quantized node's origin, so that every plane it decodes is 0 or a
+// normal float, and flushing denormals (FTZ / DAZ, which the renderer sets) changes none.
+// A denormal x is read by its bits: under DAZ its arithmetic would see 0.
+float origin_below(float x) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(x);
+  if ((bits << 1) == 0) return x;  // +-0
+  if ((bits & 0x7f800000u) == 0) return bits >> 31 ? -0x1p-126f : 0.0f;
+  if (!(std::fabs(x) < 0x1p-102f)) return x;
+  return float(std::floor(double(x) * 0x1p126) * 0x1p-126);
+}
 
 // Axis a of the boxes in node's slots [0, n): origins, scale and the planes, each plane the
 // nearest the node can hold on the outer side of the box's.
@@ -26,6 +39,7 @@ void quantize_axis(QuantizedNode<N>& node, const Aabb* boxes, int n, int a) {
     lo = std::min(lo, boxes[i].lo[a]);
     hi = std::max(hi, boxes[i].hi[a]);
   }
+  lo = origin_below(lo);
   std::uint8_t* qlo = node.q[2 * a];
   std::uint8_t* qhi = node.q[2 * a + 1];
   // The least scale 2^e with lo + 255 * 2^e >= hi, rounded as the walks round it.
@@ -54,16 +68,19 @@ void quantize_axis(QuantizedNode<N>& node, const Aabb* boxes, int n, int a) {
   for (int i = 0; i < n; ++i) {
     // From the nearest estimate, moved until the plane is outside the box and the next
     // one inward is not: bounded steps, since plane(0) = lo and plane(255) >= hi.
-    int l = int(std::clamp(std::floor((double(boxes[i].lo[a]) - lo) * inv), 0.0, 255.0));
+    // (fmax: a NaN estimate starts at 0)
+    const double l0 = std::floor((double(boxes[i].lo[a]) - lo) * inv);
+    const double h0 = std::ceil((double(boxes[i].hi[a]) - lo) * inv);
+    int l = int(std::clamp(std::fmax(l0, 0.0), 0.0, 255.0));
     while (l > 0 && plane(l) > boxes[i].lo[a]) --l;
     while (l < 255 && plane(l + 1) <= boxes[i].lo[a]) ++l;
-    int h = int(std::clamp(std::ceil((double(boxes[i].hi[a]) - lo) * inv), 0.0, 255.0));
+    int h = int(std::clamp(std::fmax(h0, 0.0), 0.0, 255.0));
     while (h < 255 && plane(h) < boxes[i].hi[a]) ++h;
     while (h > 0 && plane(h - 1) >= boxes[i].hi[a]) --h;
     qlo[i] = std::uint8_t(l);
     qhi[i] = std::uint8_t(h);
   }
-  for (int i = n; i < N; ++i) {  // unused: an inverted box, though the walks never test it
+  for (int i = n; i < N; ++i) {  // unused: an inverted box (the walks mask these slots)
     qlo[i] = 255;
     qhi[i] = 0;
   }
@@ -416,10 +433,9 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
   Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();
   out.bounds = {mlib::load_xyz(bvh.nodes[0].lo), mlib::load_xyz(bvh.nodes[0].hi)};
-  const std::size_t bytes =
-      out.nodes.size() * sizeof(WideNode<N>) + leaf_blocks * sizeof(TriangleBlock);
-  out.prefetch_pushed = bytes >= kPrefetchPushedBytes;
   if (layout == NodeLayout::quantized) quantize_nodes(out);
+  out.prefetch_pushed =
+      out.node_bytes() + leaf_blocks * sizeof(TriangleBlock) >= kPrefetchPushedBytes;
   return out;
 }
 

@@ -65,13 +65,14 @@ static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256 &&
 // QuantizedNode: WideNode with its child boxes quantized (Ylitie et al. 2017; Embree's compressed nodes): plane
 // (row r, slot i) = origin[r] + q[r][i] * scale(r / 2), scale(a) = 2^(scale_bits[a] - 127) in
 // [2^-126, 2^120]. The product of an 8-bit integer and such a power of two is exact, so the
-// sum is rounded once whether it is fused or not: the builder and every kernel decode the
-// same float. The builder rounds each plane outward (a decoded box holds the child's padded
+// sum is rounded once whether it is fused or not; the origins are multiples of 2^-126, so no
+// plane is a denormal that flushing (FTZ / DAZ) would move: the builder and every kernel
+// decode the same float. The builder rounds each plane outward (a decoded box holds the child's padded
 // box, bvh/build.cpp), so no ray misses a box it would have entered before quantization. An
 // axis whose boxes span more than 255 * 2^120 gets origins -inf (low rows) and +inf (high
 // rows), every child unbounded along it. Unused slots are those outside `used`: the walks
-// drop them from every test's result, whatever their rows decode to. Half a WideNode's
-// bytes or less, for a few more operations per node test (wide_traverse.h: NodeRay).
+// drop them from every test's result, whatever their rows decode to. Fewer bytes than a
+// WideNode, for a few more operations per node test (wide_traverse.h: node_row).
 // N = 4: 32 bytes of header + 24 of planes + 16 of children + 16 of orders = 88, padded to 96.
 // N = 8: 32 + 48 + 32 + 32 = 144. N = 16: 32 + 96 + 64 + 64 = 256 (four cache lines).
 template <int N>
@@ -109,14 +110,14 @@ inline constexpr int kOrderBits = N <= 8 ? 3 : 4;
 
 template <int N>
 struct WideBvh {
-  // Depth first; nodes[0] is the root when root is not a leaf. On huge pages once large
+  // The nodes, of one layout: `quantized_nodes` when `quantized`, else `nodes` (NodeLayout).
+  // Depth first; the first is the root when root is not a leaf. On huge pages once large
   // (mlib/huge_pages.h): a ray reads a few nodes anywhere in the array.
-  // Nodes of one layout: `quantized_nodes` when `quantized`, else `nodes` (NodeLayout).
   mlib::HugePageVector<WideNode<N>> nodes;
   mlib::HugePageVector<QuantizedNode<N>> quantized_nodes;
   bool quantized = false;
   std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
-  // The binary tree's root box (padded, build.cpp), which holds every child box: a ray that
+  // The binary tree's root box (padded, build.cpp), which holds every triangle: a ray that
   // misses it (slab_entry, as the binary tree's walk tests it) hits no triangle, and the
   // closest-hit walk returns before its per-ray set-up (rt2/kernel/wide_traverse.h, may_enter).
   Aabb bounds;
@@ -140,7 +141,6 @@ struct WideBvh {
                      : nodes.size() * sizeof(WideNode<N>);
   }
 };
-
 
 // The tree size from which collapse_bvh sets WideBvh::prefetch_pushed.
 inline constexpr std::size_t kPrefetchPushedBytes = std::size_t(16) << 20;

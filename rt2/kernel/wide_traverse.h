@@ -49,9 +49,9 @@ MLIB_INLINE mlib::vfloat<N> node_row(const QuantizedNode<N>& node, int row) {
     return V::from_bytes(node.q[row]) * scale + V::broadcast(node.origin[row]);
 }
 
-// f(nodes) with bvh's nodes, of either layout. The call on quantized nodes stays out of line:
-// inlined beside the plain one, it made the plain walks' callers slower (single rays by about
-// 5 % on the default meshes, measured with bench_trace).
+// f(nodes) with bvh's nodes, of either layout. The call on quantized nodes stays out of line,
+// so that the plain walks' callers are compiled as they are without it (inlined beside them,
+// it slowed their single rays: docs/performance.md).
 template <class F, class Node>
 [[gnu::noinline]] decltype(auto) out_of_line(F& f, const Node* nodes) {
   return f(nodes);

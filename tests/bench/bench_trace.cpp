@@ -501,7 +501,7 @@ rt2::Accel build_and_report(const Options& o, const Model& m, int threads) {
   std::vector<long long> embree_bytes(2, 0);
   std::size_t rt2_peak = 0, embree_peak[2] = {0, 0};  // the largest over the reps
   const int omp_threads = omp_get_max_threads();
-  omp_set_num_threads(threads);  // Accel::build's parallel regions (bvh/build.cpp, refit)
+  omp_set_num_threads(threads);  // Accel::build's parallel regions (bvh/build.cpp)
 #if defined(RT2_HAVE_EMBREE)
   // Embree's TBB scheduler is capped by a process-wide tbb::global_control, which would cap
   // bench_trace's own loops too, so this device is released before any tracing (the
@@ -808,7 +808,10 @@ int main(int argc, char** argv) {
                m.tris, o.build_reps);
 
   rt2::Accel acc;
-  for (int t : o.threads) acc = build_and_report(o, m, t);  // the same tree at any count
+  for (int t : o.threads) {  // the same tree at any count
+    acc = rt2::Accel{};  // released before the next count's builds, as between reps
+    acc = build_and_report(o, m, t);
+  }
   EmbreeScene embree_scenes[2] = {nullptr, nullptr};
 #if defined(RT2_HAVE_EMBREE)
   RTCDevice dev = o.embree ? bench::embree_device(o.device_config("").c_str()) : nullptr;

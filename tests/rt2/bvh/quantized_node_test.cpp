@@ -19,8 +19,10 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Checks node's slots [0, n) against boxes: the decode is exact, holds the box, and no
-// plane could move one step inward and still hold it (unless the axis is unbounded).
+// Checks node's slots [0, n) against boxes: every decoded plane holds its box's and is 0, a
+// normal float or infinite (never a denormal, which flushing would move); no plane could move
+// one step inward and still hold it; the step is the least that spans the axis, and an axis
+// is unbounded only when no step of 2^120 or less spans it.
 template <int N>
 void expect_tight_outward(const QuantizedNode<N>& node, const Aabb* boxes, int n) {
   ASSERT_EQ(node.slots(), n);
@@ -31,29 +33,48 @@ void expect_tight_outward(const QuantizedNode<N>& node, const Aabb* boxes, int n
     ASSERT_LE(s, 0x1p120f);
     const bool unbounded = node.origin[2 * a] == -kInf;
     EXPECT_EQ(unbounded, node.origin[2 * a + 1] == kInf);
+    float lo = kInf, hi = -kInf;
+    for (int i = 0; i < n; ++i) {
+      lo = std::min(lo, boxes[i].lo[a]);
+      hi = std::max(hi, boxes[i].hi[a]);
+    }
+    if (unbounded) {
+      EXPECT_FALSE(std::isfinite(lo) && std::isfinite(hi) && lo + 255.0f * 0x1p120f >= hi)
+          << "axis " << a << " could have been spanned";
+    } else {
+      const float o = node.origin[2 * a];
+      EXPECT_LE(o, lo);
+      EXPECT_GE(o + 255.0f * s, hi);
+      if (s > 0x1p-126f) {
+        EXPECT_LT(o + 255.0f * (s / 2), hi) << "a finer step spans the axis";
+      }
+    }
     for (int i = 0; i < n; ++i) {
       const Aabb d = node.box(i);
       for (int row = 2 * a; row <= 2 * a + 1; ++row) {
-        const int q = node.q[row][i];
-        // The product is exact: the same in double.
-        EXPECT_EQ(double(float(q) * s), double(q) * double(s));
+        const float p = node.plane(row, i);
+        EXPECT_TRUE(p == 0.0f || std::isnormal(p) || std::isinf(p)) << "plane " << p;
       }
       EXPECT_LE(d.lo[a], boxes[i].lo[a]) << "slot " << i << " axis " << a;
       EXPECT_GE(d.hi[a], boxes[i].hi[a]) << "slot " << i << " axis " << a;
       if (unbounded) continue;
       const float o = node.origin[2 * a];
       const int ql = node.q[2 * a][i], qh = node.q[2 * a + 1][i];
-      if (ql < 255) EXPECT_GT(o + float(ql + 1) * s, boxes[i].lo[a]) << "lo not tight";
-      if (qh > 0) EXPECT_LT(o + float(qh - 1) * s, boxes[i].hi[a]) << "hi not tight";
+      if (ql < 255) {
+        EXPECT_GT(o + float(ql + 1) * s, boxes[i].lo[a]) << "lo not tight";
+      }
+      if (qh > 0) {
+        EXPECT_LT(o + float(qh - 1) * s, boxes[i].hi[a]) << "hi not tight";
+      }
     }
   }
 }
 
-// Random boxes of every size at every position a float holds, some axes spanning more than
-// 255 * 2^120 (unbounded then), some flat, some single points.
+// Random boxes of every size at every position a float holds (denormals included), some
+// axes spanning more than 255 * 2^120 or reaching infinity (unbounded then), some flat.
 TEST(QuantizedNode, DecodedBoxesHoldTheirBoxesAndAreTightAtEveryMagnitude) {
   std::mt19937 rng(51);
-  std::uniform_int_distribution<int> exponent(-149, 127), count(1, 16), kind(0, 5);
+  std::uniform_int_distribution<int> exponent(-149, 127), count(1, 16), kind(0, 6);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(0.0f, 1.0f);
   for (int round = 0; round < 20000; ++round) {
     const int n = count(rng);
@@ -72,9 +93,10 @@ TEST(QuantizedNode, DecodedBoxesHoldTheirBoxesAndAreTightAtEveryMagnitude) {
           case 0: hi = lo; break;                          // flat
           case 1: lo = -3.4e38f, hi = 3.4e38f; break;      // the whole float range
           case 2: lo = std::max(lo, -3.4e38f); break;
+          case 3: hi = kInf; break;                        // a padded box that overflowed
           default: break;
         }
-        if (!std::isfinite(lo) || !std::isfinite(hi) || hi < lo) lo = hi = 0.0f;
+        if (std::isnan(lo) || std::isnan(hi) || std::isinf(lo) || !(hi >= lo)) lo = hi = 0.0f;
         boxes[i].lo[a] = lo;
         boxes[i].hi[a] = hi;
       }
@@ -99,7 +121,7 @@ TEST(QuantizedNode, DecodedBoxesHoldTheirBoxesAndAreTightAtEveryMagnitude) {
 }
 
 // A scene built with both layouts: every closest hit and every occlusion answer is the same,
-// bit for bit, on every ISA, with single rays and packets, near the origin and far from it.
+// bit for bit, on every ISA, near the origin and far from it, tiny and huge.
 TEST(QuantizedNode, QuantizedTreesAnswerEveryRayAsPlainTreesOnEveryIsa) {
   struct Case {
     vec4 offset;
