@@ -152,7 +152,8 @@ struct Accel {
   WideSah tree_sah() const;
   // Whether the triangle tree's nodes are quantized (NodeLayout).
   bool quantized_nodes() const {
-    return with_bvh_width(isa, [&](auto width) { return wide<decltype(width)::value>().quantized; });
+    return with_bvh_width(isa,
+                          [&](auto width) { return wide<decltype(width)::value>().quantized; });
   }
 
   // Branch-free over the kinds: a batch's hits mix them unpredictably (a plane's tag, or any

@@ -27,9 +27,10 @@ static_assert(sizeof(BvhNode) == 32);
 
 enum class Split { midpoint, sah };
 
-// The builder's knobs.
+// The wide tree's nodes (BvhConfig::nodes).
 enum class NodeLayout { plain, quantized };
 
+// The builder's knobs.
 struct BvhConfig {
   // A node with at most this many primitives becomes a leaf; any bigger node is split
   // (the thesis's rule; 1 ... 16384 and more all work).

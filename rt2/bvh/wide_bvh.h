@@ -56,23 +56,25 @@ struct alignas(64) WideNode {
   }
   float plane(int row, int i) const { return bounds[row][i]; }
   Aabb box(int i) const {
-    return {vec4(bounds[0][i], bounds[2][i], bounds[4][i]), vec4(bounds[1][i], bounds[3][i], bounds[5][i])};
+    return {vec4(bounds[0][i], bounds[2][i], bounds[4][i]),
+            vec4(bounds[1][i], bounds[3][i], bounds[5][i])};
   }
 };
 static_assert(sizeof(WideNode<4>) == 128 && sizeof(WideNode<8>) == 256 &&
               sizeof(WideNode<16>) == 512);
 
-// QuantizedNode: WideNode with its child boxes quantized (Ylitie et al. 2017; Embree's compressed nodes): plane
-// (row r, slot i) = origin[r] + q[r][i] * scale(r / 2), scale(a) = 2^(scale_bits[a] - 127) in
-// [2^-126, 2^120]. The product of an 8-bit integer and such a power of two is exact, so the
-// sum is rounded once whether it is fused or not; the origins are multiples of 2^-126, so no
-// plane is a denormal that flushing (FTZ / DAZ) would move: the builder and every kernel
-// decode the same float. The builder rounds each plane outward (a decoded box holds the child's padded
-// box, bvh/build.cpp), so no ray misses a box it would have entered before quantization. An
-// axis whose boxes span more than 255 * 2^120 gets origins -inf (low rows) and +inf (high
-// rows), every child unbounded along it. Unused slots are those outside `used`: the walks
-// drop them from every test's result, whatever their rows decode to. Fewer bytes than a
-// WideNode, for a few more operations per node test (wide_traverse.h: node_row).
+// QuantizedNode: WideNode with its child boxes quantized (Ylitie et al. 2017; Embree's
+// compressed nodes): plane (row r, slot i) = origin[r] + q[r][i] * scale(r / 2), scale(a) =
+// 2^(scale_bits[a] - 127) in [2^-126, 2^120]. The product of an 8-bit integer and such a
+// power of two is exact, so the sum is rounded once whether it is fused or not; the origins
+// are multiples of 2^-126, so no plane is a denormal that flushing (FTZ / DAZ) would move:
+// the builder and every kernel decode the same float. The builder rounds each plane outward
+// (a decoded box holds the child's padded box, bvh/build.cpp), so no ray misses a box it
+// would have entered before quantization. An axis whose boxes span more than 255 * 2^120 gets
+// origins -inf (low rows) and +inf (high rows), every child unbounded along it. Unused slots
+// are those outside `used`: the walks drop them from every test's result, whatever their rows
+// decode to. Fewer bytes than a WideNode, for a few more operations per node test
+// (wide_traverse.h: node_row).
 // N = 4: 32 bytes of header + 24 of planes + 16 of children + 16 of orders = 88, padded to 96.
 // N = 8: 32 + 48 + 32 + 32 = 144. N = 16: 32 + 96 + 64 + 64 = 256 (four cache lines).
 template <int N>
@@ -81,18 +83,21 @@ struct alignas(N >= 16 ? 64 : 16) QuantizedNode {
   std::uint8_t scale_bits[3];     // per axis: the scale's float exponent bits
   std::uint8_t count;             // the used slots are [0, count)
   std::uint32_t used;             // (1 << count) - 1
-  std::uint8_t q[6][N];            // rows as WideNode::bounds
-  std::uint32_t child[N];          // as WideNode's
-  std::uint32_t octant_order[N];   // as WideNode's, from the boxes before quantization
+  std::uint8_t q[6][N];           // rows as WideNode::bounds
+  std::uint32_t child[N];         // as WideNode's
+  std::uint32_t octant_order[N];  // as WideNode's, from the boxes before quantization
 
   int slots() const { return count; }
 
-  float scale(int axis) const { return std::bit_cast<float>(std::uint32_t(scale_bits[axis]) << 23); }
+  float scale(int axis) const {
+    return std::bit_cast<float>(std::uint32_t(scale_bits[axis]) << 23);
+  }
   // The plane of row `row`, slot i, as the walks decode it.
   float plane(int row, int i) const { return origin[row] + float(q[row][i]) * scale(row >> 1); }
   // Slot i's box as decoded.
   Aabb box(int i) const {
-    return {vec4(plane(0, i), plane(2, i), plane(4, i)), vec4(plane(1, i), plane(3, i), plane(5, i))};
+    return {vec4(plane(0, i), plane(2, i), plane(4, i)),
+            vec4(plane(1, i), plane(3, i), plane(5, i))};
   }
 };
 static_assert(sizeof(QuantizedNode<4>) == 96 && sizeof(QuantizedNode<8>) == 144 &&

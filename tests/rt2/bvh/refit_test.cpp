@@ -134,9 +134,10 @@ TEST(Refit, RefitTreesAnswerEveryRayAsAFreshBuildAndBruteForceOnDeformedMeshes) 
           ASSERT_TRUE(same_topology(test::geometry_scene({mesh}), moved));
           acc.refit(moved, config, 2);
           const Accel fresh = Accel::build(moved, config, isa);
-          const std::vector<Ray> rays =
-              test::random_rays(fresh, std::size_t(20000 / test::kSampleScale), 40u + unsigned(frame));
-          const std::string what = name + ", " + isa_name(isa) + ", frame " + std::to_string(frame) +
+          const std::vector<Ray> rays = test::random_rays(
+              fresh, std::size_t(20000 / test::kSampleScale), 40u + unsigned(frame));
+          const std::string what = name + ", " + isa_name(isa) + ", frame " +
+                                   std::to_string(frame) +
                                    (layout == NodeLayout::quantized ? ", quantized" : "");
           EXPECT_GT(expect_refit_answers_as_fresh(acc, fresh, rays, what.c_str(), brute_every),
                     rays.size() / 4)
