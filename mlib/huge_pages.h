@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -98,5 +100,31 @@ struct HugePageAllocator {
 // A std::vector whose storage, once it reaches a huge page, lies on huge pages.
 template <class T>
 using HugePageVector = std::vector<T, HugePageAllocator<T>>;
+
+// HugePageAllocator whose containers leave the elements they add without a value
+// (resize(n), vector(n)) unwritten when their type is trivially copyable and trivially
+// destructible, for the code that fills them: so a page of a large array is first touched by
+// the thread that writes it, not zeroed by one thread before. Other types are default-
+// initialized.
+template <class T>
+struct UninitializedHugePageAllocator : HugePageAllocator<T> {
+  UninitializedHugePageAllocator() = default;
+  template <class U>
+  UninitializedHugePageAllocator(const UninitializedHugePageAllocator<U>&) noexcept {}
+
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    if constexpr (!(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>))
+      ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A HugePageVector whose resize leaves the new elements of a trivially copyable type unwritten.
+template <class T>
+using HugePageBuffer = std::vector<T, UninitializedHugePageAllocator<T>>;
 
 }  // namespace mlib

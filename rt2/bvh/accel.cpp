@@ -29,6 +29,10 @@ std::vector<WideBvh<N>>& mesh_trees_of(MeshTrees& t) {
     return t.bvh4;
 }
 
+// Below some 64k triangles a second thread costs more than it saves (a build's or a refit's
+// pass over the triangles).
+constexpr std::uint32_t kParallelTriangles = 65536;
+
 // Which per-vertex columns the triangles carry: normals and texture coordinates, for all
 // triangles when any mesh (the world's or an instanced one) has them.
 struct TriangleColumns {
@@ -60,15 +64,11 @@ class MeshFaces {
   std::uint32_t total_ = 0;
 };
 
-// Writes triangle `index` of acc's arrays: face `face` of `m`. Returns whether its vertices
-// differ from those it held.
-bool put_triangle(const Mesh& m, std::uint32_t face, TriangleColumns columns, std::size_t index,
-                  Accel& acc) {
+// Writes triangle `index` of acc's arrays: face `face` of `m`, whose triangle is `tri`.
+void set_triangle(const Mesh& m, std::uint32_t face, const Triangle& tri, TriangleColumns columns,
+                  std::size_t index, Accel& acc) {
   const auto& f = m.faces[face];
-  const Triangle tri = Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
-  Triangle& old = acc.tris[index];
-  const bool moved = std::memcmp(&old, &tri, sizeof(Triangle)) != 0;  // bits: -0 is not +0
-  old = tri;
+  acc.tris[index] = tri;
   acc.tri_materials[index] = m.face_materials[face];
   if (columns.texcoords) {
     if (m.texcoords.empty())
@@ -84,6 +84,20 @@ bool put_triangle(const Mesh& m, std::uint32_t face, TriangleColumns columns, st
       acc.tri_normals[index] = {m.normals[f[0]], m.normals[f[1]], m.normals[f[2]]};
     }
   }
+}
+
+Triangle triangle_of(const Mesh& m, std::uint32_t face) {
+  const auto& f = m.faces[face];
+  return Triangle::make(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]]);
+}
+
+// set_triangle over a triangle acc already holds; returns whether its vertices changed.
+bool put_triangle(const Mesh& m, std::uint32_t face, TriangleColumns columns, std::size_t index,
+                  Accel& acc) {
+  const Triangle tri = triangle_of(m, face);
+  const bool moved =
+      std::memcmp(&acc.tris[index], &tri, sizeof(Triangle)) != 0;  // bits: -0 is not +0
+  set_triangle(m, face, tri, columns, index, acc);
   return moved;
 }
 
@@ -118,9 +132,11 @@ WideBvh<N> build_triangles(std::span<const Mesh> meshes, const BvhConfig& config
   acc.tri_materials.resize(end);
   if (columns.normals) acc.tri_normals.resize(end);
   if (columns.texcoords) acc.tri_texcoords.resize(end);
-  for (std::uint32_t k = 0; k < faces.total(); ++k) {
+  const std::uint32_t count = faces.total();
+#pragma omp parallel for schedule(static) if (count >= kParallelTriangles)
+  for (std::uint32_t k = 0; k < count; ++k) {
     const auto [m, face] = faces(k);
-    put_triangle(*m, face, columns, offset + k, acc);
+    set_triangle(*m, face, triangle_of(*m, face), columns, offset + k, acc);
   }
   const std::size_t first_block = acc.blocks.size();
   WideBvh<N> tree = collapse_bvh<N>(bvh, std::span<const Triangle>(acc.tris).subspan(offset),
@@ -205,8 +221,7 @@ double Accel::refit(const Scene& scene, const BvhConfig& config, int threads) {
       const TreeRecord& record = trees[t];
       if (count != record.count)
         throw Error("refit: the scene's triangles are not those the trees were built over");
-      // Below some 64k triangles a second thread costs more than it saves.
-      const int tree_team = record.count < 65536 ? 1 : team;
+      const int tree_team = record.count < kParallelTriangles ? 1 : team;
       bool moved = false;
       std::size_t first = record.first;
       for (const Mesh& m : meshes) {  // mesh by mesh: no search per triangle

@@ -62,7 +62,7 @@ struct Accel {
   WideBvh<8> bvh8;
   WideBvh<16> bvh16;
   TriangleBlocks blocks;
-  mlib::HugePageVector<Triangle> tris;  // on huge pages once large: read per hit
+  mlib::HugePageBuffer<Triangle> tris;  // on huge pages once large: read per hit
   std::vector<std::uint32_t> tri_materials;
   std::vector<std::array<vec4, 3>> tri_normals;  // per-vertex normals; empty if all flat
   // Per-vertex texture coordinates (u, v); empty if no mesh has any (then all are 0).

@@ -48,6 +48,8 @@ struct Bin {
 // node at any thread count.
 constexpr std::uint32_t kTaskPrims = 1u << 18;
 constexpr std::uint32_t kTaskDepth = 4;
+// A node of kTaskPrims or more is binned by this many tasks, whatever the team's size.
+constexpr std::uint32_t kChunks = 8;
 
 using Nodes = decltype(Bvh::nodes);
 
@@ -93,7 +95,7 @@ class Builder {
     Aabb lb, lcb, rb, rcb;
     const std::uint32_t mid = split(begin, end, cbounds, depth, lb, lcb, rb, rcb);
     std::uint32_t right;
-    if (count >= kTaskPrims && depth < kTaskDepth && omp_get_num_threads() > 1) {
+    if (depth < kTaskDepth && in_parallel(count)) {
       right = build_sides_as_tasks(begin, mid, end, lb, lcb, rb, rcb, depth + 1);
     } else {
       build(begin, mid, lb, lcb, depth + 1);
@@ -150,7 +152,7 @@ class Builder {
     const bool flat = !(cbounds.extent()[axis] > 0.0f);
     std::uint32_t mid = begin;
     if (!flat && depth < kMedianBelowDepth) {
-      mid = config_.split == Split::sah ? sah(begin, end, cbounds, lb, lcb, rb, rcb)
+      mid = config_.split == Split::sah ? sah(begin, end, depth, cbounds, lb, lcb, rb, rcb)
                                         : midpoint(begin, end, cbounds, axis);
       if (mid != begin && mid != end && config_.split == Split::sah) return mid;
     }
@@ -180,8 +182,8 @@ class Builder {
   // wins, where cost(n) counts blocks of config.sah_block primitives (Embree's rule: a leaf
   // is tested a block at a time, so 4 triangles cost as much as 1). Returns begin when no
   // plane separates anything.
-  std::uint32_t sah(std::uint32_t begin, std::uint32_t end, const Aabb& cbounds, Aabb& lb,
-                    Aabb& lcb, Aabb& rb, Aabb& rcb) {
+  std::uint32_t sah(std::uint32_t begin, std::uint32_t end, std::uint32_t depth,
+                    const Aabb& cbounds, Aabb& lb, Aabb& lcb, Aabb& rb, Aabb& rcb) {
     // Bins in proportion to the primitives, 4 + n / 20 up to sah_bins (Embree's mapping):
     // most nodes are small, and planes between nearly empty bins find little.
     const int bins = std::min(config_.sah_bins, 4 + int((end - begin) / 20));
@@ -213,15 +215,31 @@ class Builder {
         ++b.count;
       }
     };
-    std::uint32_t i = begin;
-    for (; i + 1 < end; i += 2) {
-      add(bx, prims_[i]);
-      add(by, prims_[i + 1]);
-    }
-    if (i < end) add(bx, prims_[i]);
-    for (int k = 0; k < 3 * bins; ++k) {
-      bx[k].box.grow(by[k].box);
-      bx[k].count += by[k].count;
+    const auto bin_range = [&](Bin* even, Bin* odd, std::uint32_t first, std::uint32_t last) {
+      std::uint32_t i = first;
+      for (; i + 1 < last; i += 2) {
+        add(even, prims_[i]);
+        add(odd, prims_[i + 1]);
+      }
+      if (i < last) add(even, prims_[i]);
+    };
+    const int sets = 3 * bins;  // bins per set
+    if (shared_pass(end - begin, depth)) {
+      // Chunks binned by tasks into sets of their own, merged after: the bins are the same
+      // in any grouping (box bounds and counts).
+      std::vector<Bin> chunk_bins(std::size_t(2 * sets) * kChunks);
+      const std::uint32_t step = (end - begin + kChunks - 1) / kChunks;
+#pragma omp taskloop default(shared) grainsize(1)
+      for (std::uint32_t c = 0; c < kChunks; ++c) {
+        Bin* even = chunk_bins.data() + std::size_t(2 * sets) * c;
+        bin_range(even, even + sets, begin + std::min(end - begin, c * step),
+                  begin + std::min(end - begin, (c + 1) * step));
+      }
+      for (std::uint32_t c = 0; c < 2 * kChunks; ++c)
+        merge_bins(bx, chunk_bins.data() + std::size_t(sets) * c, sets);
+    } else {
+      bin_range(bx, by, begin, end);
+      merge_bins(bx, by, sets);
     }
     float best_cost = kInfinity;
     int best_axis = -1, best_plane = 0;
@@ -262,9 +280,37 @@ class Builder {
     });
     // The sides' centroid bounds in a pass of their own: cheaper than a centroid box per
     // bin, updated three times per primitive during binning.
-    lcb = centroid_bounds(begin, mid);
-    rcb = centroid_bounds(mid, end);
+    if (shared_pass(end - begin, depth)) {
+#pragma omp task default(shared)
+      lcb = centroid_bounds(begin, mid);
+      rcb = centroid_bounds(mid, end);
+#pragma omp taskwait
+    } else {
+      lcb = centroid_bounds(begin, mid);
+      rcb = centroid_bounds(mid, end);
+    }
     return mid;
+  }
+
+  // Whether the sides of a split of `count` primitives may be built at once.
+  static bool in_parallel(std::uint32_t count) {
+    return count >= kTaskPrims && omp_get_num_threads() > 1;
+  }
+
+  // Whether a pass over the `count` primitives of a node at `depth` is split between tasks:
+  // while the subtrees built at once are fewer than the threads. Deeper, every thread
+  // builds a subtree of its own, and a thread waiting for the pass's tasks could take up
+  // a whole subtree's task in the meantime and hold up the node it is splitting.
+  static bool shared_pass(std::uint32_t count, std::uint32_t depth) {
+    return in_parallel(count) && depth < 31 && (1 << depth) < omp_get_num_threads();
+  }
+
+  // The bins of `from` added to those of `to`, `count` of each.
+  static void merge_bins(Bin* to, const Bin* from, int count) {
+    for (int k = 0; k < count; ++k) {
+      to[k].box.grow(from[k].box);
+      to[k].count += from[k].count;
+    }
   }
 
   // The (doubled) centroid bounds of prims_[begin, end), two primitives at a time.
@@ -325,28 +371,39 @@ Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box
   Bvh bvh;
   if (count > 0) {
     // partitioned over and over: huge pages once large
-    mlib::HugePageVector<PrimBox> prims(count);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const Aabb box = box_of(i);
-      for (int a = 0; a < 3; ++a) {
-        prims[i].lo[a] = box.lo[a];
-        prims[i].hi[a] = box.hi[a];
-      }
-      prims[i].index = i;
-      prims[i].pad = 0;
-    }
+    mlib::HugePageBuffer<PrimBox> prims(count);  // each thread writes its part first
     // A full binary tree over n primitives has at most 2n - 1 nodes.
     bvh.nodes.reserve(2 * std::size_t(count));
     Builder root(config, prims.data(), bvh.nodes, bvh.stats);
     Aabb bounds, cbounds;
-    root.measure(0, count, bounds, cbounds);
     std::exception_ptr error;  // thrown after the parallel region, which it may not leave
 #pragma omp parallel if (count >= kTaskPrims)
+    {
+      Aabb b, cb;
+#pragma omp for schedule(static) nowait
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const Aabb box = box_of(i);
+        for (int a = 0; a < 3; ++a) {
+          prims[i].lo[a] = box.lo[a];
+          prims[i].hi[a] = box.hi[a];
+        }
+        prims[i].index = i;
+        prims[i].pad = 0;
+        b.grow(box);
+        cb.grow(box.lo + box.hi);
+      }
+#pragma omp critical
+      {
+        bounds.grow(b);  // min and max: the same in any order
+        cbounds.grow(cb);
+      }
+#pragma omp barrier
 #pragma omp single
-    try {
-      root.build(0, count, bounds, cbounds, 0);
-    } catch (...) {
-      error = std::current_exception();
+      try {
+        root.build(0, count, bounds, cbounds, 0);
+      } catch (...) {
+        error = std::current_exception();
+      }
     }
     if (error) std::rethrow_exception(error);
     bvh.order.resize(count);

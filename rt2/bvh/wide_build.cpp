@@ -165,30 +165,76 @@ class Refitter {
   TriangleBlock* blocks_;
 };
 
+// Binary trees of at least this many nodes are collapsed by the team's threads: planned
+// and filled by OpenMP tasks.
+constexpr std::size_t kParallelNodes = std::size_t(1) << 17;
+
 template <int N>
 class Collapser {
  public:
+  // The tree's leaf blocks go to blocks[first_block ...], which the caller has sized.
   Collapser(const Bvh& bvh, std::span<const Triangle> tris, TriangleBlocks& blocks,
-            WideBvh<N>& out)
-      : bvh_(bvh), tris_(tris), blocks_(blocks), out_(out) {}
+            std::size_t first_block, WideBvh<N>& out)
+      : bvh_(bvh), tris_(tris), blocks_(blocks), first_block_(first_block), out_(out) {}
 
   // The reference for the root: a wide node made from it (nodes[0]), or its leaf.
   std::uint32_t convert_root() {
-    if (bvh_.nodes[0].is_leaf()) return leaf(bvh_.nodes[0]);
-    plan();
-    out_.nodes.reserve(wide_nodes(0));  // exactly: no copy to shrink it after
-    out_.nodes.emplace_back();
-    fill(0, 0, 0);
-    return 0;
+    Cursor at{1, first_block_};
+    Tally tally;
+    std::uint32_t root = 0;
+    if (bvh_.nodes[0].is_leaf()) {
+      root = leaf(bvh_.nodes[0], at, tally);
+    } else {
+      choice_.resize(bvh_.nodes.size());  // every entry planned before it is read
+      wide_split_.resize(bvh_.nodes.size());
+      const bool parallel = bvh_.nodes.size() >= kParallelNodes;
+#pragma omp parallel if (parallel)
+#pragma omp single
+      plan(0, 0);
+      Size sizes[N];  // the root's children's subtrees
+      const Size size = wide_size(0, sizes);
+      out_.nodes.resize(size.nodes);  // exactly: no copy to shrink it after
+#pragma omp parallel if (parallel)
+#pragma omp single
+      fill(0, 0, 0, sizes, at, tally);
+    }
+    out_.leaves = tally.leaves;
+    out_.max_depth = tally.max_depth;
+    return root;
   }
 
  private:
-  // Fills wide node `index` from binary node b (inner). The node's inner children get
-  // consecutive slots, allocated before any of their subtrees, so siblings sit side by
-  // side in memory (as Embree's allocator places them): a walk that returns to a sibling
-  // finds it near the one it just left. Leaves' blocks likewise follow each other.
-  void fill(std::uint32_t index, std::uint32_t b, std::uint32_t depth) {
-    out_.max_depth = std::max(out_.max_depth, depth);
+  // Where the next wide node and the next leaf block go.
+  struct Cursor {
+    std::uint32_t node;
+    std::size_t block;
+  };
+  // The wide nodes and leaf blocks of a subtree.
+  struct Size {
+    std::uint32_t nodes = 0;
+    std::size_t blocks = 0;
+  };
+  // What a subtree's fill adds to the tree's record.
+  struct Tally {
+    std::uint32_t leaves = 0, max_depth = 0;
+  };
+
+  // The fills of subtrees that begin at most this deep are tasks of their own, when their
+  // subtree holds kTaskBlocks blocks or more: for N = 16 the root's children (up to 16),
+  // for N = 4 and 8 their children too.
+  static constexpr std::uint32_t kTaskDepth = N >= 16 ? 1 : 2;
+  static constexpr std::size_t kTaskBlocks = 4096;
+
+  // Fills wide node `index` from binary node b (inner), its subtrees' nodes and blocks from
+  // `at` on. The node's inner children get consecutive slots, allocated before any of their
+  // subtrees, so siblings sit side by side in memory (as Embree's allocator places them): a
+  // walk that returns to a sibling finds it near the one it just left. Leaves' blocks
+  // likewise follow each other. A subtree filled by a task takes the nodes and blocks that
+  // the serial fill would give it (`sizes`: its children's, when known), so the tree is the
+  // same at any thread count.
+  void fill(std::uint32_t index, std::uint32_t b, std::uint32_t depth, const Size* sizes,
+            Cursor& at, Tally& tally) {
+    tally.max_depth = std::max(tally.max_depth, depth);
     std::uint32_t kids[N];
     const int n = slots(b, kids);
     WideNode<N> w;
@@ -197,18 +243,37 @@ class Collapser {
     for (int i = 0; i < n; ++i) {
       const BvhNode& k = bvh_.nodes[kids[i]];
       boxes[i] = {mlib::load_xyz(k.lo), mlib::load_xyz(k.hi)};
-      if (k.is_leaf()) {
-        w.child[i] = leaf(k);
-      } else {
-        w.child[i] = static_cast<std::uint32_t>(out_.nodes.size());
-        out_.nodes.emplace_back();
-      }
+      w.child[i] = k.is_leaf() ? leaf(k, at, tally) : at.node++;
     }
     set_boxes(w, boxes, n);
     set_octant_orders(w, boxes, n);
     out_.nodes[index] = w;
-    for (int i = 0; i < n; ++i)
-      if (!(w.child[i] & kLeaf)) fill(w.child[i], kids[i], depth + 1);
+    const bool tasks = depth < kTaskDepth && omp_in_parallel();
+    Tally task_tally[N];
+    for (int i = 0; i < n; ++i) {
+      if (w.child[i] & kLeaf) continue;
+      if (tasks) {
+        Size grand[N];
+        const Size size = sizes ? sizes[i] : wide_size(kids[i], grand);
+        if (size.blocks >= kTaskBlocks) {
+          const Size* known = sizes ? nullptr : grand;
+          Cursor task_at = at;
+#pragma omp task default(shared) firstprivate(i, task_at, known, grand)
+          fill(w.child[i], kids[i], depth + 1, known ? grand : nullptr, task_at, task_tally[i]);
+          at.node += size.nodes - 1;  // the child's own node is allocated above
+          at.block += size.blocks;
+          continue;
+        }
+      }
+      fill(w.child[i], kids[i], depth + 1, nullptr, at, tally);
+    }
+    if (tasks) {
+#pragma omp taskwait
+      for (const Tally& t : task_tally) {
+        tally.leaves += t.leaves;
+        tally.max_depth = std::max(tally.max_depth, t.max_depth);
+      }
+    }
   }
 
   // WideNode::octant_order for the n children in slots [0, n), whose boxes are `boxes`.
@@ -256,13 +321,8 @@ class Collapser {
   // stays is the choice: choice_[m][k] for binary subtree m held in at most k slots of a wide
   // node, the slots the least cost takes (the low kUsedBits) and the slots its first child's
   // subtree takes (the bits above; 0: m itself in one slot, a wide node of its own): 10
-  // bytes per binary node for N = 8, where a table of the costs as well would take 55.
-  void plan() {
-    choice_.assign(bvh_.nodes.size(), {});
-    wide_split_.assign(bvh_.nodes.size(), 0);
-    plan(0);
-  }
-
+  // bytes per binary node for N = 8, where a table of the costs as well would take 55. The top
+  // levels' subtrees are planned by OpenMP tasks (plan).
   // One choice: the slots used (up to N) below kUsedBits, the first child's above.
   static constexpr int kUsedBits = N <= 8 ? 4 : 5;
   using Choice = std::conditional_t<N <= 8, std::uint8_t, std::uint16_t>;
@@ -279,7 +339,8 @@ class Collapser {
     Costs cost;
     int leaves;
   };
-  Plan plan(std::uint32_t m) {
+  static constexpr std::uint32_t kPlanTaskDepth = 8;  // tasks for subtrees down to here
+  Plan plan(std::uint32_t m, std::uint32_t depth) {
     const BvhNode& node = bvh_.nodes[m];
     Plan p{{}, 1};
     Costs& cost = p.cost;
@@ -287,7 +348,16 @@ class Collapser {
       for (int k = 1; k <= N; ++k) choice_[m][k] = 1;
       return p;
     }
-    const Plan left = plan(m + 1), right = plan(node.offset);
+    Plan left, right;
+    if (depth < kPlanTaskDepth && omp_in_parallel()) {
+#pragma omp task default(shared)
+      left = plan(m + 1, depth + 1);
+      right = plan(node.offset, depth + 1);
+#pragma omp taskwait
+    } else {
+      left = plan(m + 1, depth + 1);
+      right = plan(node.offset, depth + 1);
+    }
     const Costs &l = left.cost, &r = right.cost;
     p.leaves = std::min(N, left.leaves + right.leaves);
     // The least cost of k slots split between the children, and the first child's share.
@@ -351,14 +421,29 @@ class Collapser {
     return n;
   }
 
-  // The wide nodes the plan makes of binary subtree b (inner) when b is a wide node.
-  std::size_t wide_nodes(std::uint32_t b) const {
+  // The wide nodes and leaf blocks the plan makes of binary subtree b (inner) when b is a
+  // wide node; sizes[i]: those of the subtree in its slot i (inner), or 0.
+  Size wide_size(std::uint32_t b, Size (&sizes)[N]) const {
     std::uint32_t kids[N];
     const int n = slots(b, kids);
-    std::size_t count = 1;
-    for (int i = 0; i < n; ++i)
-      if (!bvh_.nodes[kids[i]].is_leaf()) count += wide_nodes(kids[i]);
-    return count;
+    Size size{1, 0};
+    for (int i = 0; i < N; ++i) sizes[i] = {};
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& k = bvh_.nodes[kids[i]];
+      if (k.is_leaf()) {
+        size.blocks += blocks_of(k);
+      } else {
+        Size grand[N];
+        sizes[i] = wide_size(kids[i], grand);
+        size.nodes += sizes[i].nodes;
+        size.blocks += sizes[i].blocks;
+      }
+    }
+    return size;
+  }
+
+  static std::size_t blocks_of(const BvhNode& leaf) {
+    return (leaf.count + TriangleBlock::kLanes - 1) / TriangleBlock::kLanes;
   }
 
   static float area(const BvhNode& k) {
@@ -366,26 +451,29 @@ class Collapser {
     return x * y + y * z + z * x;
   }
 
-  std::uint32_t leaf(const BvhNode& node) {
-    ++out_.leaves;
-    const auto first = static_cast<std::uint32_t>(blocks_.size());
+  // Writes the leaf's blocks from at.block on; returns its reference.
+  std::uint32_t leaf(const BvhNode& node, Cursor& at, Tally& tally) {
+    ++tally.leaves;
+    const auto first = static_cast<std::uint32_t>(at.block);
     for (std::uint32_t i = 0; i < node.count; i += TriangleBlock::kLanes) {
       TriangleBlock block = TriangleBlock::empty();
       for (std::uint32_t l = 0; l < TriangleBlock::kLanes && i + l < node.count; ++l) {
         const std::uint32_t t = bvh_.order[node.offset + i + l];
         block.set(static_cast<int>(l), tris_[t], t);
       }
-      blocks_.push_back(block);
+      if (i + TriangleBlock::kLanes >= node.count) block.prim[0] |= TriangleBlock::kLastBlock;
+      blocks_[at.block++] = block;
     }
-    blocks_.back().prim[0] |= TriangleBlock::kLastBlock;
     return kLeaf | first;
   }
 
-  mlib::HugePageVector<std::array<Choice, N + 1>> choice_;
-  mlib::HugePageVector<std::uint8_t> wide_split_;
+  // Written by the plan before they are read: their pages first touched by its tasks.
+  mlib::HugePageBuffer<std::array<Choice, N + 1>> choice_;
+  mlib::HugePageBuffer<std::uint8_t> wide_split_;
   const Bvh& bvh_;
   const std::span<const Triangle> tris_;
   TriangleBlocks& blocks_;
+  const std::size_t first_block_;
   WideBvh<N>& out_;
 };
 
@@ -425,12 +513,13 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
                         TriangleBlocks& blocks, NodeLayout layout) {
   WideBvh<N> out;
   if (bvh.nodes.empty()) return out;
-  std::size_t leaf_blocks = 0;  // reserved at once: each growth would copy them all
+  std::size_t leaf_blocks = 0;  // sized at once: each growth would copy them all
   constexpr std::uint32_t kLanes = TriangleBlock::kLanes;
   for (const BvhNode& node : bvh.nodes)
     if (node.is_leaf()) leaf_blocks += (node.count + kLanes - 1) / kLanes;
-  blocks.reserve(blocks.size() + leaf_blocks);
-  Collapser<N> c(bvh, triangles, blocks, out);
+  const std::size_t first_block = blocks.size();
+  blocks.resize(first_block + leaf_blocks);
+  Collapser<N> c(bvh, triangles, blocks, first_block, out);
   out.root = c.convert_root();
   out.bounds = {mlib::load_xyz(bvh.nodes[0].lo), mlib::load_xyz(bvh.nodes[0].hi)};
   if (layout == NodeLayout::quantized) quantize_nodes(out);

@@ -118,8 +118,8 @@ struct WideBvh {
   // The nodes, of one layout: `quantized_nodes` when `quantized`, else `nodes` (NodeLayout).
   // Depth first; the first is the root when root is not a leaf. On huge pages once large
   // (mlib/huge_pages.h): a ray reads a few nodes anywhere in the array.
-  mlib::HugePageVector<WideNode<N>> nodes;
-  mlib::HugePageVector<QuantizedNode<N>> quantized_nodes;
+  mlib::HugePageBuffer<WideNode<N>> nodes;
+  mlib::HugePageBuffer<QuantizedNode<N>> quantized_nodes;
   bool quantized = false;
   std::uint32_t root = kNoChild;   // 0, a leaf (a tree of one leaf), or kNoChild (no triangles)
   // The binary tree's root box (padded, build.cpp), which holds every triangle: a ray that

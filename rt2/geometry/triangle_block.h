@@ -52,7 +52,8 @@ struct alignas(16) TriangleBlock {
 static_assert(sizeof(TriangleBlock) == 208);
 
 // A tree's leaf blocks, on huge pages once large (mlib/huge_pages.h): a ray reads a few
-// blocks anywhere in the array.
-using TriangleBlocks = mlib::HugePageVector<TriangleBlock>;
+// blocks anywhere in the array. resize leaves the new blocks unwritten, for the builder's
+// threads to fill.
+using TriangleBlocks = mlib::HugePageBuffer<TriangleBlock>;
 
 }  // namespace rt2
