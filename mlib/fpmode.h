@@ -29,4 +29,32 @@ inline bool set_flush_denormals(bool on = true) {
   return was;
 }
 
+// The calling thread's FTZ and DAZ bits (as MXCSR holds them), for other threads to adopt.
+inline unsigned denormal_mode() {
+  return _MM_GET_FLUSH_ZERO_MODE() | _MM_GET_DENORMALS_ZERO_MODE();
+}
+
+// Sets the calling thread's FTZ and DAZ bits to those of `mode` (denormal_mode()); returns
+// the bits it had.
+inline unsigned set_denormal_mode(unsigned mode) {
+  const unsigned was = denormal_mode();
+  _MM_SET_FLUSH_ZERO_MODE(mode & _MM_FLUSH_ZERO_MASK);
+  _MM_SET_DENORMALS_ZERO_MODE(mode & _MM_DENORMALS_ZERO_MASK);
+  return was;
+}
+
+// Holds the calling thread at `mode` (denormal_mode()) while it lives, then restores the
+// thread's own. Made at the start of a parallel region with the mode of the thread that
+// opened it, every thread of the team computes as that thread would alone.
+class DenormalModeScope {
+ public:
+  explicit DenormalModeScope(unsigned mode) : was_(set_denormal_mode(mode)) {}
+  ~DenormalModeScope() { set_denormal_mode(was_); }
+  DenormalModeScope(const DenormalModeScope&) = delete;
+  DenormalModeScope& operator=(const DenormalModeScope&) = delete;
+
+ private:
+  unsigned was_;
+};
+
 }  // namespace mlib

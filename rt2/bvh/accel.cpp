@@ -10,6 +10,7 @@
 
 #include <omp.h>
 
+#include "mlib/fpmode.h"
 #include "rt2/base/error.h"
 #include "rt2/base/memory.h"
 #include "rt2/bvh/linear_build.h"
@@ -133,10 +134,15 @@ WideBvh<N> build_triangles(std::span<const Mesh> meshes, const BvhConfig& config
   if (columns.normals) acc.tri_normals.resize(end);
   if (columns.texcoords) acc.tri_texcoords.resize(end);
   const std::uint32_t count = faces.total();
-#pragma omp parallel for schedule(static) if (count >= kParallelTriangles)
-  for (std::uint32_t k = 0; k < count; ++k) {
-    const auto [m, face] = faces(k);
-    set_triangle(*m, face, triangle_of(*m, face), columns, offset + k, acc);
+  const unsigned mode = mlib::denormal_mode();
+#pragma omp parallel if (count >= kParallelTriangles)
+  {
+    const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
+#pragma omp for schedule(static)
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const auto [m, face] = faces(k);
+      set_triangle(*m, face, triangle_of(*m, face), columns, offset + k, acc);
+    }
   }
   const std::size_t first_block = acc.blocks.size();
   WideBvh<N> tree = collapse_bvh<N>(bvh, std::span<const Triangle>(acc.tris).subspan(offset),
@@ -224,11 +230,16 @@ double Accel::refit(const Scene& scene, const BvhConfig& config, int threads) {
       const int tree_team = record.count < kParallelTriangles ? 1 : team;
       bool moved = false;
       std::size_t first = record.first;
+      const unsigned mode = mlib::denormal_mode();
       for (const Mesh& m : meshes) {  // mesh by mesh: no search per triangle
         const auto n = static_cast<std::uint32_t>(m.faces.size());
-#pragma omp parallel for num_threads(tree_team) schedule(static) reduction(|| : moved)
-        for (std::uint32_t face = 0; face < n; ++face)
-          moved = put_triangle(m, face, columns, first + face, *this) || moved;
+#pragma omp parallel num_threads(tree_team) reduction(|| : moved)
+        {
+          const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
+#pragma omp for schedule(static)
+          for (std::uint32_t face = 0; face < n; ++face)
+            moved = put_triangle(m, face, columns, first + face, *this) || moved;
+        }
         first += n;
       }
       if (!moved) continue;
@@ -258,26 +269,31 @@ void Accel::place_instances(const std::vector<Instance>& scene_instances, int th
   boxes.resize(n);
   instances.resize(n);
   // In the scene's order: each instance read and its record written once, in sequence.
+  const unsigned mode = mlib::denormal_mode();
   with_bvh_width(isa, [&](auto width) {
     constexpr int N = decltype(width)::value;
-#pragma omp parallel for num_threads(team) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const Instance& in = scene_instances[i];
-      boxes[i] = world_box(mesh_tree<N>(in.mesh).bounds, in.to_world);
-      TracedInstance& r = instances[i];
-      const Affine to_object = in.to_world.inverse();
-      r.to_world = columns_of(in.to_world);
-      r.to_object = columns_of(to_object);
-      Affine normals;  // A^-T: the transpose of the inverse's linear part
-      for (std::size_t a = 0; a < 3; ++a) {
-        for (std::size_t b = 0; b < 3; ++b) normals.m[a][b] = to_object.m[b][a];
-        normals.m[a][3] = 0.0;
+#pragma omp parallel num_threads(team)
+    {
+      const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        const Instance& in = scene_instances[i];
+        boxes[i] = world_box(mesh_tree<N>(in.mesh).bounds, in.to_world);
+        TracedInstance& r = instances[i];
+        const Affine to_object = in.to_world.inverse();
+        r.to_world = columns_of(in.to_world);
+        r.to_object = columns_of(to_object);
+        Affine normals;  // A^-T: the transpose of the inverse's linear part
+        for (std::size_t a = 0; a < 3; ++a) {
+          for (std::size_t b = 0; b < 3; ++b) normals.m[a][b] = to_object.m[b][a];
+          normals.m[a][3] = 0.0;
+        }
+        r.normals = columns_of(normals);
+        r.mesh = in.mesh;
+        r.material = in.material;
+        r.identity = in.to_world.is_identity();
+        r.mirror = in.to_world.determinant() < 0.0;
       }
-      r.normals = columns_of(normals);
-      r.mesh = in.mesh;
-      r.material = in.material;
-      r.identity = in.to_world.is_identity();
-      r.mirror = in.to_world.determinant() < 0.0;
     }
   });
   // Rebuilt every frame, one instance a leaf (entering one costs a transform and a walk of

@@ -16,6 +16,7 @@
 
 #include <omp.h>
 
+#include "mlib/fpmode.h"
 #include "mlib/huge_pages.h"
 #include "rt2/base/error.h"
 
@@ -48,7 +49,8 @@ struct Bin {
 // node at any thread count.
 constexpr std::uint32_t kTaskPrims = 1u << 18;
 constexpr std::uint32_t kTaskDepth = 4;
-// A node of kTaskPrims or more is binned by this many tasks, whatever the team's size.
+// A split whose passes are shared (Builder::shared_pass) bins in this many tasks, whatever
+// the team's size.
 constexpr std::uint32_t kChunks = 8;
 
 using Nodes = decltype(Bvh::nodes);
@@ -377,8 +379,10 @@ Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box
     Builder root(config, prims.data(), bvh.nodes, bvh.stats);
     Aabb bounds, cbounds;
     std::exception_ptr error;  // thrown after the parallel region, which it may not leave
+    const unsigned mode = mlib::denormal_mode();
 #pragma omp parallel if (count >= kTaskPrims)
     {
+      const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
       Aabb b, cb;
 #pragma omp for schedule(static) nowait
       for (std::uint32_t i = 0; i < count; ++i) {

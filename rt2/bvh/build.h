@@ -36,6 +36,7 @@ inline float box_pad(float lo, float hi) {
 
 // The same over `count` primitives, primitive i having the box box_of(i): without a vector
 // of boxes, for a large mesh 32 bytes per triangle that need not be written and read again.
+// From 2^18 primitives on, box_of is called by several threads at once.
 Bvh build_bvh(std::uint32_t count, const std::function<Aabb(std::uint32_t)>& box_of,
               const BvhConfig& config);
 

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstdint>
 
+#include "mlib/fpmode.h"
 #include "rt2/lights/morton.h"
 #include "rt2/lights/radix_sort.h"
 
@@ -91,17 +92,25 @@ void build_linear_bvh(const std::vector<Aabb>& boxes, int threads, Bvh& bvh) {
   std::vector<std::uint32_t>& codes = scratch;
   codes.resize(n);
   bvh.order.resize(n);
-#pragma omp parallel for num_threads(team) schedule(static) if (n >= 16384)
-  for (std::uint32_t i = 0; i < n; ++i) {
-    codes[i] = grid.code(boxes[i].center());
-    bvh.order[i] = i;
+  const unsigned mode = mlib::denormal_mode();
+#pragma omp parallel num_threads(team) if (n >= 16384)
+  {
+    const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
+#pragma omp for schedule(static)
+    for (std::uint32_t i = 0; i < n; ++i) {
+      codes[i] = grid.code(boxes[i].center());
+      bvh.order[i] = i;
+    }
   }
   radix_sort_pairs(codes, bvh.order, team, 30);
   bvh.nodes.resize(2 * std::size_t(n) - 1);
   LinearBuilder builder{boxes, codes, bvh};
 #pragma omp parallel num_threads(team) if (n >= kTaskGrain)
+  {
+    const mlib::DenormalModeScope caller_mode(mode);
 #pragma omp single
-  builder.build(0, 0, n);
+    builder.build(0, 0, n);
+  }
   bvh.stats.nodes = 2 * n - 1;
   bvh.stats.leaves = n;
   bvh.stats.max_leaf_prims = 1;

@@ -9,6 +9,7 @@
 
 #include <omp.h>
 
+#include "mlib/fpmode.h"
 #include "rt2/bvh/build.h"
 #include "rt2/bvh/wide_bvh.h"
 
@@ -188,15 +189,22 @@ class Collapser {
       choice_.resize(bvh_.nodes.size());  // every entry planned before it is read
       wide_split_.resize(bvh_.nodes.size());
       const bool parallel = bvh_.nodes.size() >= kParallelNodes;
+      const unsigned mode = mlib::denormal_mode();
 #pragma omp parallel if (parallel)
+      {
+        const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
 #pragma omp single
-      plan(0, 0);
+        plan(0, 0);
+      }
       Size sizes[N];  // the root's children's subtrees
       const Size size = wide_size(0, sizes);
       out_.nodes.resize(size.nodes);  // exactly: no copy to shrink it after
 #pragma omp parallel if (parallel)
+      {
+        const mlib::DenormalModeScope caller_mode(mode);
 #pragma omp single
-      fill(0, 0, 0, sizes, at, tally);
+        fill(0, 0, 0, sizes, at, tally);
+      }
     }
     out_.leaves = tally.leaves;
     out_.max_depth = tally.max_depth;
@@ -495,7 +503,7 @@ void quantize_nodes(WideBvh<N>& bvh) {
     }
     std::memcpy(&bvh.quantized_nodes[k], &q, sizeof q);
   }
-  bvh.nodes = {};
+  decltype(bvh.nodes)().swap(bvh.nodes);  // `= {}` would keep the capacity
   bvh.quantized = true;
 }
 
@@ -537,9 +545,13 @@ void refit_bvh(WideBvh<N>& bvh, std::span<const Triangle> triangles, TriangleBlo
     Refitter<N, Node> r(const_cast<Node*>(nodes), triangles, blocks);
     if (threads == 1 || (bvh.root & kLeaf)) return r.refit(bvh.root, 0);
     Aabb all;
+    const unsigned mode = mlib::denormal_mode();
 #pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
+    {
+      const mlib::DenormalModeScope caller_mode(mode);  // the team computes as one thread
 #pragma omp single
-    all = r.refit(bvh.root, 2);  // N^2 tasks: enough to balance a few threads
+      all = r.refit(bvh.root, 2);  // N^2 tasks: enough to balance a few threads
+    }
     return all;
   });
   for (int a = 0; a < 3; ++a) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <tuple>
 
+#include "mlib/fpmode.h"
 #include "rt2/bvh/accel.h"
 #include "rt2/scene/builtin_scene.h"
 #include "rt2/base/error.h"
@@ -878,6 +879,49 @@ TEST(Bvh, WideTreesCollapsedByTasksAreTheSameBitForBitAtAnyThreadCount) {
     EXPECT_EQ(std::memcmp(one.tris.data(), two.tris.data(), one.tris.size() * sizeof(Triangle)),
               0);
   }
+}
+
+// A build's threads compute in the denormal mode of the thread that calls it (FTZ and DAZ,
+// mlib/fpmode.h), which rt2 does not set for its workers: over triangles a few hundred
+// denormals across, whose normals are denormal unless flushed, the triangles, blocks and
+// nodes two threads build for a flushing caller are those one thread builds.
+TEST(Bvh, BuildsOnTwoThreadsComputeInTheCallersDenormalMode) {
+  Mesh soup = test::random_soup(300000, 0.2f, 23);
+  for (vec4& p : soup.positions) p = p * 1e-21f;  // edges ~1e-22: products ~1e-44
+  const Scene scene = test::geometry_scene({soup});
+  // A new thread starts in its creator's mode: the team's workers are made before the
+  // caller flushes, as a program's are before it renders.
+  int team = 0;
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp atomic
+    ++team;
+  }
+  ASSERT_EQ(team, 2);
+  const unsigned own = mlib::denormal_mode();
+  mlib::set_flush_denormals(true);
+  const unsigned flush = mlib::denormal_mode();
+  mlib::set_denormal_mode(own);
+  const mlib::DenormalModeScope flushing(flush);  // the caller's mode until the test ends
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Accel one = Accel::build(scene, BvhConfig{}, Isa::avx512);
+  omp_set_num_threads(2);
+  const Accel two = Accel::build(scene, BvhConfig{}, Isa::avx512);
+  omp_set_num_threads(threads);
+  ASSERT_TRUE(std::any_of(one.tris.begin(), one.tris.end(),
+                          [](const Triangle& t) { return t.n[0] == 0.0f && t.v0[0] != 0.0f; }))
+      << "some normal flushed to 0";
+  ASSERT_EQ(one.tris.size(), two.tris.size());
+  EXPECT_EQ(std::memcmp(one.tris.data(), two.tris.data(), one.tris.size() * sizeof(Triangle)), 0);
+  ASSERT_EQ(one.blocks.size(), two.blocks.size());
+  EXPECT_EQ(std::memcmp(one.blocks.data(), two.blocks.data(),
+                        one.blocks.size() * sizeof(TriangleBlock)),
+            0);
+  ASSERT_EQ(one.bvh16.nodes.size(), two.bvh16.nodes.size());
+  EXPECT_EQ(std::memcmp(one.bvh16.nodes.data(), two.bvh16.nodes.data(),
+                        one.bvh16.nodes.size() * sizeof(WideNode<16>)),
+            0);
 }
 
 TEST(Bvh, ChildBoxesAreInsideTheirParent) {
