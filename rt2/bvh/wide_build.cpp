@@ -173,10 +173,11 @@ constexpr std::size_t kParallelNodes = std::size_t(1) << 17;
 template <int N>
 class Collapser {
  public:
-  // The tree's leaf blocks go to blocks[first_block ...], which the caller has sized.
+  // The tree's leaf blocks are appended to `blocks`, sized once for all of them (each
+  // growth would copy them all).
   Collapser(const Bvh& bvh, std::span<const Triangle> tris, TriangleBlocks& blocks,
-            std::size_t first_block, WideBvh<N>& out)
-      : bvh_(bvh), tris_(tris), blocks_(blocks), first_block_(first_block), out_(out) {}
+            WideBvh<N>& out)
+      : bvh_(bvh), tris_(tris), blocks_(blocks), first_block_(blocks.size()), out_(out) {}
 
   // The reference for the root: a wide node made from it (nodes[0]), or its leaf.
   std::uint32_t convert_root() {
@@ -184,6 +185,7 @@ class Collapser {
     Tally tally;
     std::uint32_t root = 0;
     if (bvh_.nodes[0].is_leaf()) {
+      blocks_.resize(first_block_ + blocks_of(bvh_.nodes[0]));
       root = leaf(bvh_.nodes[0], at, tally);
     } else {
       choice_.resize(bvh_.nodes.size());  // every entry planned before it is read
@@ -198,6 +200,7 @@ class Collapser {
       }
       Size sizes[N];  // the root's children's subtrees
       const Size size = wide_size(0, sizes);
+      blocks_.resize(first_block_ + size.blocks);
       out_.nodes.resize(size.nodes);  // exactly: no copy to shrink it after
 #pragma omp parallel if (parallel)
       {
@@ -521,18 +524,14 @@ WideBvh<N> collapse_bvh(const Bvh& bvh, std::span<const Triangle> triangles,
                         TriangleBlocks& blocks, NodeLayout layout) {
   WideBvh<N> out;
   if (bvh.nodes.empty()) return out;
-  std::size_t leaf_blocks = 0;  // sized at once: each growth would copy them all
-  constexpr std::uint32_t kLanes = TriangleBlock::kLanes;
-  for (const BvhNode& node : bvh.nodes)
-    if (node.is_leaf()) leaf_blocks += (node.count + kLanes - 1) / kLanes;
   const std::size_t first_block = blocks.size();
-  blocks.resize(first_block + leaf_blocks);
-  Collapser<N> c(bvh, triangles, blocks, first_block, out);
+  Collapser<N> c(bvh, triangles, blocks, out);
   out.root = c.convert_root();
   out.bounds = {mlib::load_xyz(bvh.nodes[0].lo), mlib::load_xyz(bvh.nodes[0].hi)};
   if (layout == NodeLayout::quantized) quantize_nodes(out);
   out.prefetch_pushed =
-      out.node_bytes() + leaf_blocks * sizeof(TriangleBlock) >= kPrefetchPushedBytes;
+      out.node_bytes() + (blocks.size() - first_block) * sizeof(TriangleBlock) >=
+      kPrefetchPushedBytes;
   return out;
 }
 
